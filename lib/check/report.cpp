@@ -1,0 +1,368 @@
+#include "check/report.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <ctime>
+#include <fstream>
+#include <iomanip>
+#include <map>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "check/reference.hpp"
+#include "check/study.hpp"
+#include "core/error.hpp"
+#include "io/atomic_file.hpp"
+
+namespace fem::check {
+namespace {
+
+// A minimal document model written out twice, as Markdown and as HTML, so that the two reports
+// never disagree.
+struct Block {
+    enum Kind { Heading, Paragraph, Table, Image } kind;
+    int level = 0;
+    std::string text;                            // heading / paragraph / image caption
+    std::string file;                            // image
+    std::vector<std::string> header;             // table
+    std::vector<std::vector<std::string>> rows;  // table
+};
+
+std::string html_escape(const std::string& s) {
+    std::string out;
+    for (char c : s) {
+        switch (c) {
+            case '<': out += "&lt;"; break;
+            case '>': out += "&gt;"; break;
+            case '&': out += "&amp;"; break;
+            case '"': out += "&quot;"; break;
+            default: out += c;
+        }
+    }
+    return out;
+}
+
+std::string md_cell(std::string s) {
+    std::string out;
+    for (char c : s) {
+        if (c == '|') out += "\\|";
+        else if (c == '\n') out += ' ';
+        else out += c;
+    }
+    return out;
+}
+
+std::string slug(const std::string& s) {
+    std::string out;
+    for (char c : s) out += std::isalnum(static_cast<unsigned char>(c)) ? static_cast<char>(std::tolower(c)) : '-';
+    return out;
+}
+
+std::string to_markdown(const std::vector<Block>& doc) {
+    std::ostringstream md;
+    for (const auto& b : doc) {
+        switch (b.kind) {
+            case Block::Heading: md << std::string(b.level, '#') << ' ' << b.text << "\n\n"; break;
+            case Block::Paragraph: md << b.text << "\n\n"; break;
+            case Block::Image: md << "![" << b.text << "](" << b.file << ")\n\n"; break;
+            case Block::Table:
+                md << '|';
+                for (const auto& h : b.header) md << ' ' << md_cell(h) << " |";
+                md << "\n|";
+                for (std::size_t i = 0; i < b.header.size(); ++i) md << "---|";
+                md << '\n';
+                for (const auto& row : b.rows) {
+                    md << '|';
+                    for (const auto& c : row) md << ' ' << md_cell(c) << " |";
+                    md << '\n';
+                }
+                md << '\n';
+                break;
+        }
+    }
+    return md.str();
+}
+
+std::string to_html(const std::vector<Block>& doc) {
+    std::ostringstream h;
+    h << "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\n"
+         "<title>Reproduction report</title>\n<style>\n"
+         "body{font-family:sans-serif;max-width:1200px;margin:2em auto;padding:0 1em;color:#222}\n"
+         "table{border-collapse:collapse;margin:1em 0;font-size:90%}\n"
+         "th,td{border:1px solid #bbb;padding:3px 6px;vertical-align:top}\nth{background:#eee}\n"
+         "td.pass{background:#dfd}td.FAIL{background:#fbb}td.shown{background:#eef}\n"
+         "img{max-width:100%;border:1px solid #ddd;margin:0.5em 0}\n"
+         "</style></head><body>\n";
+    for (const auto& b : doc) {
+        switch (b.kind) {
+            case Block::Heading:
+                h << "<h" << b.level << " id=\"" << slug(b.text) << "\">" << html_escape(b.text) << "</h" << b.level << ">\n";
+                break;
+            case Block::Paragraph: h << "<p>" << html_escape(b.text) << "</p>\n"; break;
+            case Block::Image:
+                h << "<figure><img src=\"" << html_escape(b.file) << "\" alt=\"" << html_escape(b.text)
+                  << "\"><figcaption>" << html_escape(b.text) << "</figcaption></figure>\n";
+                break;
+            case Block::Table: {
+                h << "<table><tr>";
+                for (const auto& c : b.header) h << "<th>" << html_escape(c) << "</th>";
+                h << "</tr>\n";
+                const auto verdict_col = std::find(b.header.begin(), b.header.end(), "verdict") - b.header.begin();
+                for (const auto& row : b.rows) {
+                    h << "<tr>";
+                    for (std::size_t i = 0; i < row.size(); ++i) {
+                        if (static_cast<long>(i) == verdict_col) h << "<td class=\"" << html_escape(row[i]) << "\">";
+                        else h << "<td>";
+                        h << html_escape(row[i]) << "</td>";
+                    }
+                    h << "</tr>\n";
+                }
+                h << "</table>\n";
+                break;
+            }
+        }
+    }
+    h << "</body></html>\n";
+    return h.str();
+}
+
+std::string number(double v) {
+    std::ostringstream s;
+    s << std::setprecision(6) << v;
+    return s.str();
+}
+
+std::string value_text(const nlohmann::json& v) {
+    if (v.is_null()) return "(none)";
+    if (v.is_number()) return number(v.get<double>());
+    if (v.is_string()) return v.get<std::string>();
+    if (v.is_array()) {
+        std::string out;
+        for (const auto& x : v) out += (out.empty() ? "" : ", ") + value_text(x);
+        return out;
+    }
+    return v.dump();
+}
+
+std::string tolerance_text(const CheckRecord& r) {
+    if (!r.tolerance) return r.basis == "trend" ? "must hold" : "-";
+    std::string out;
+    if (r.tolerance->rel > 0) out += number(100 * r.tolerance->rel) + " %";
+    if (r.tolerance->abs > 0 || r.tolerance->rel == 0) out += (out.empty() ? "" : " + ") + number(r.tolerance->abs) + (r.unit.empty() ? "" : " " + r.unit);
+    return out;
+}
+
+std::string verdict_text(const CheckRecord& r) { return !r.passed ? "shown" : (*r.passed ? "pass" : "FAIL"); }
+
+std::string deviation_text(const CheckRecord& r) {
+    auto d = r.deviation();
+    if (!d) return "-";
+    std::ostringstream s;
+    s << std::showpos << std::fixed << std::setprecision(std::abs(*d) < 0.01 ? 3 : 1) << 100 * *d << " %";
+    return s.str();
+}
+
+struct StudyResults {
+    std::string name;
+    std::optional<ReferenceFile> reference;
+    std::vector<CheckRecord> records;
+    nlohmann::json runs = nlohmann::json::array();
+    bool has_results = false;
+};
+
+nlohmann::json read_json(const std::filesystem::path& path) {
+    std::ifstream in(path);
+    try {
+        return nlohmann::json::parse(in);
+    } catch (const nlohmann::json::parse_error& e) {
+        throw InputError(path.string() + ": not valid JSON (" + e.what() + ")");
+    }
+}
+
+// Thesis order of items: by chapter, then tables/figures/equations/appendices, then number.
+std::string item_sort_key(const std::string& item) {
+    std::string key;
+    int number_run = 0;
+    std::string digits;
+    auto flush = [&]() {
+        if (!digits.empty()) {
+            key += std::string(6 - std::min<std::size_t>(6, digits.size()), '0') + digits;
+            digits.clear();
+            ++number_run;
+        }
+    };
+    for (char c : item) {
+        if (std::isdigit(static_cast<unsigned char>(c))) digits += c;
+        else {
+            flush();
+            key += c;
+        }
+    }
+    flush();
+    return key;
+}
+
+}  // namespace
+
+int write_report(const ReportInputs& in) {
+    // Studies: every reference file, in the canonical order, then any others alphabetically.
+    std::vector<StudyResults> studies;
+    std::vector<std::string> names;
+    if (std::filesystem::exists(in.reference_dir))
+        for (const auto& f : std::filesystem::directory_iterator(in.reference_dir))
+            if (f.path().extension() == ".toml") names.push_back(f.path().stem().string());
+    if (std::filesystem::exists(in.results_dir))
+        for (const auto& d : std::filesystem::directory_iterator(in.results_dir))
+            if (std::filesystem::exists(d.path() / "checks.json")) names.push_back(d.path().filename().string());
+    std::sort(names.begin(), names.end());
+    names.erase(std::unique(names.begin(), names.end()), names.end());
+    const auto& order = study_order();
+    std::stable_sort(names.begin(), names.end(), [&](const std::string& a, const std::string& b) {
+        auto ia = std::find(order.begin(), order.end(), a) - order.begin();
+        auto ib = std::find(order.begin(), order.end(), b) - order.begin();
+        return ia < ib;
+    });
+    for (const auto& name : names) {
+        StudyResults s;
+        s.name = name;
+        const auto ref_path = in.reference_dir / (name + ".toml");
+        if (std::filesystem::exists(ref_path)) s.reference = load_reference(ref_path);
+        const auto checks_path = in.results_dir / name / "checks.json";
+        if (std::filesystem::exists(checks_path)) {
+            s.has_results = true;
+            for (const auto& j : read_json(checks_path)) s.records.push_back(CheckRecord::from_json(j));
+        }
+        const auto runs_path = in.results_dir / name / "runs.json";
+        if (std::filesystem::exists(runs_path)) s.runs = read_json(runs_path);
+        studies.push_back(std::move(s));
+    }
+
+    int total = 0, passed = 0, failed = 0, shown = 0;
+    for (const auto& s : studies)
+        for (const auto& r : s.records) {
+            ++total;
+            if (!r.passed) ++shown;
+            else if (*r.passed) ++passed;
+            else ++failed;
+        }
+
+    std::vector<Block> doc;
+    auto heading = [&](int level, std::string text) { doc.push_back({Block::Heading, level, std::move(text)}); };
+    auto paragraph = [&](std::string text) { doc.push_back({Block::Paragraph, 0, std::move(text)}); };
+
+    const auto now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
+    std::ostringstream stamp;
+    stamp << std::put_time(std::gmtime(&now), "%Y-%m-%d %H:%M UTC");
+    heading(1, "Reproduction report");
+    paragraph("Every table and figure of the thesis \"A Finite Element Based Dynamic Modeling Method for Design "
+              "Analysis of Flexible Multibody Systems\" that a study of this project checks: the regenerated "
+              "figure, the thesis's value, ours, the deviation, the tolerance (written before the run, with its "
+              "basis: exact, model, reconstructed, trend or experiment), the verdict and the note. Generated " +
+              stamp.str() + " by `make all`.");
+    paragraph(std::to_string(total) + " checks: " + std::to_string(passed) + " passed, " + std::to_string(failed) +
+              " failed, " + std::to_string(shown) + " shown only (not judged).");
+
+    Block summary{Block::Table};
+    summary.header = {"study", "thesis section", "checks", "passed", "failed", "status"};
+    for (const auto& s : studies) {
+        int p = 0, f = 0;
+        for (const auto& r : s.records) {
+            if (r.passed && *r.passed) ++p;
+            if (r.passed && !*r.passed) ++f;
+        }
+        summary.rows.push_back({s.name, s.reference ? s.reference->section : "",
+                                std::to_string(s.records.size()), std::to_string(p), std::to_string(f),
+                                !s.has_results ? "not run" : (f ? "FAILING" : "reproduced")});
+    }
+    doc.push_back(summary);
+
+    // Thesis discrepancies: every check whose reference carries one.
+    heading(2, "Thesis discrepancies");
+    Block disc{Block::Table};
+    disc.header = {"item", "check", "thesis prints", "follows from the thesis's data", "ours", "explanation"};
+    for (const auto& s : studies)
+        for (const auto& r : s.records)
+            if (!r.discrepancy.empty())
+                disc.rows.push_back({r.source, r.id, value_text(r.thesis),
+                                     r.reference ? number(*r.reference) : "-", value_text(r.reproduced), r.discrepancy});
+    if (disc.rows.empty()) paragraph("None recorded yet.");
+    else {
+        paragraph("Where the thesis contradicts its own data, the check compares ours with the value that follows "
+                  "from the thesis's data and lists the printed value here.");
+        doc.push_back(disc);
+    }
+
+    for (const auto& s : studies) {
+        const std::string title = s.reference ? s.reference->title : s.name;
+        heading(2, s.name + ": " + title);
+        if (s.reference && !s.reference->section.empty()) paragraph("Thesis " + s.reference->section + ". Study: `studies/" + s.name + "/`, reference values: `reference/" + s.name + ".toml`.");
+        if (s.reference && !s.reference->summary.empty()) paragraph(s.reference->summary);
+        if (!s.has_results) {
+            paragraph("Not run: no build/results/" + s.name + "/checks.json. Run `make " + s.name + "`.");
+            continue;
+        }
+        // Items in thesis order; an item's figures come first, then its checks.
+        std::map<std::string, std::vector<const CheckRecord*>> items;
+        for (const auto& r : s.records) items[item_sort_key(r.source) + "\x01" + r.source].push_back(&r);
+        std::map<std::string, bool> figure_item_done;
+        for (const auto& [key, records] : items) {
+            const std::string item = key.substr(key.find('\x01') + 1);
+            heading(3, item);
+            if (s.reference) {
+                for (const auto& [fig_item, files] : s.reference->figures) {
+                    // A figure belongs to an item when the item names it ("Table 2-2, Fig 2-5").
+                    if (item.find(fig_item) == std::string::npos && fig_item != item) continue;
+                    figure_item_done[fig_item] = true;
+                    for (const auto& file : files)
+                        if (std::filesystem::exists(in.figures_dir / file)) doc.push_back({Block::Image, 0, fig_item, file});
+                        else paragraph("(" + fig_item + ": " + file + " not drawn yet: run `make all`)");
+                }
+            }
+            Block table{Block::Table};
+            table.header = {"check", "quantity", "unit", "basis", "thesis", "ours", "deviation", "tolerance", "verdict", "note"};
+            for (const CheckRecord* r : records) {
+                std::string thesis = value_text(r->thesis);
+                if (r->reference) thesis += " (its data give " + number(*r->reference) + ")";
+                std::string note = r->note;
+                if (!r->discrepancy.empty()) note += (note.empty() ? "" : " ") + std::string("Discrepancy: ") + r->discrepancy;
+                if (!r->reason.empty()) note += (note.empty() ? "" : " ") + std::string("Tolerance: ") + r->reason;
+                table.rows.push_back({r->id, r->quantity, r->unit, r->basis, thesis, value_text(r->reproduced),
+                                      deviation_text(*r), tolerance_text(*r), verdict_text(*r), note});
+            }
+            doc.push_back(table);
+        }
+        // Figures not tied to any checked item.
+        if (s.reference)
+            for (const auto& [fig_item, files] : s.reference->figures)
+                if (!figure_item_done[fig_item]) {
+                    heading(3, fig_item);
+                    for (const auto& file : files)
+                        if (std::filesystem::exists(in.figures_dir / file)) doc.push_back({Block::Image, 0, fig_item, file});
+                }
+        if (!s.runs.empty()) {
+            heading(3, "Solver runs");
+            std::vector<std::string> keys;
+            for (const auto& run : s.runs)
+                for (const auto& [k, v] : run["values"].items())
+                    if (std::find(keys.begin(), keys.end(), k) == keys.end()) keys.push_back(k);
+            Block runs{Block::Table};
+            runs.header = {"run"};
+            runs.header.insert(runs.header.end(), keys.begin(), keys.end());
+            for (const auto& run : s.runs) {
+                std::vector<std::string> row = {run.value("name", "")};
+                for (const auto& k : keys) row.push_back(run["values"].contains(k) ? value_text(run["values"][k]) : "");
+                runs.rows.push_back(row);
+            }
+            doc.push_back(runs);
+        }
+    }
+
+    std::filesystem::create_directories(in.figures_dir);
+    io::write_text_file(in.figures_dir / "REPORT.md", to_markdown(doc));
+    io::write_text_file(in.figures_dir / "REPORT.html", to_html(doc));
+    return failed;
+}
+
+}  // namespace fem::check

@@ -1,0 +1,257 @@
+#include "check/study.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <iomanip>
+#include <iostream>
+#include <sstream>
+
+#include "core/error.hpp"
+#include "core/program.hpp"
+#include "io/atomic_file.hpp"
+#include "io/gnuplot.hpp"
+
+namespace fem::check {
+
+// ------------------------------------------------------------------------------------------------
+// CheckRecord <-> JSON (DESIGN.md "Outputs"; the optional fields reference, discrepancy and reason
+// extend the documented record without changing it).
+
+nlohmann::json CheckRecord::to_json() const {
+    nlohmann::json j;
+    j["id"] = id;
+    j["source"] = source;
+    j["quantity"] = quantity;
+    j["unit"] = unit;
+    j["basis"] = basis;
+    j["thesis"] = thesis;
+    j["reproduced"] = reproduced;
+    if (tolerance) {
+        nlohmann::json t = nlohmann::json::object();
+        if (tolerance->rel > 0) t["rel"] = tolerance->rel;
+        if (tolerance->abs > 0 || tolerance->rel == 0) t["abs"] = tolerance->abs;
+        j["tolerance"] = t;
+    } else {
+        j["tolerance"] = nullptr;
+    }
+    j["passed"] = passed ? nlohmann::json(*passed) : nlohmann::json(nullptr);
+    j["note"] = note;
+    if (reference) j["reference"] = *reference;
+    if (!discrepancy.empty()) j["discrepancy"] = discrepancy;
+    if (!reason.empty()) j["reason"] = reason;
+    return j;
+}
+
+CheckRecord CheckRecord::from_json(const nlohmann::json& j) {
+    CheckRecord r;
+    r.id = j.value("id", "");
+    r.source = j.value("source", "");
+    r.quantity = j.value("quantity", "");
+    r.unit = j.value("unit", "");
+    r.basis = j.value("basis", "");
+    r.thesis = j.value("thesis", nlohmann::json());
+    r.reproduced = j.value("reproduced", nlohmann::json());
+    if (j.contains("tolerance") && j["tolerance"].is_object()) {
+        Tolerance t;
+        t.rel = j["tolerance"].value("rel", 0.0);
+        t.abs = j["tolerance"].value("abs", 0.0);
+        r.tolerance = t;
+    }
+    if (j.contains("passed") && j["passed"].is_boolean()) r.passed = j["passed"].get<bool>();
+    r.note = j.value("note", "");
+    if (j.contains("reference") && j["reference"].is_number()) r.reference = j["reference"].get<double>();
+    r.discrepancy = j.value("discrepancy", "");
+    r.reason = j.value("reason", "");
+    return r;
+}
+
+std::optional<double> CheckRecord::deviation() const {
+    if (!thesis.is_number() || !reproduced.is_number()) return std::nullopt;
+    const double t = thesis.get<double>(), o = reproduced.get<double>();
+    if (t == 0.0) return std::nullopt;
+    return (o - t) / std::abs(t);
+}
+
+// ------------------------------------------------------------------------------------------------
+
+const std::vector<std::string>& study_order() {
+    static const std::vector<std::string> order = {
+        "cfl_tables",       "portal_frame_modes",      "compliant_beam_damping", "finger_damping",
+        "finger_twist",     "rotating_finger_contact", "football_sweep",         "ellipsoid_flip",
+        "chicken_shackling", "topology_cases"};
+    return order;
+}
+
+namespace {
+
+void usage(const std::string& name) {
+    std::cout << "usage: " << name << " [--results DIR] [--figures DIR] [--reference FILE]\n"
+              << "  Runs the study, compares with reference/" << name << ".toml and writes DIR/checks.json.\n"
+              << "  --results DIR    where data, checks.json and runs.json go (default build/results/" << name << ")\n"
+              << "  --figures DIR    draw the figures there with gnuplot (default: no figures)\n"
+              << "  --reference FILE the reference values (default reference/" << name << ".toml)\n";
+}
+
+std::string join_joined(const std::string& a, const std::string& b) {
+    if (a.empty()) return b;
+    if (b.empty()) return a;
+    return a + " " + b;
+}
+
+}  // namespace
+
+Study::Study(std::string name, int argc, char** argv) : name_(std::move(name)) {
+    source_dir_ = FEM_SOURCE_DIR;
+    results_dir_ = std::filesystem::path(FEM_RESULTS_DIR) / name_;
+    std::filesystem::path reference_path = source_dir_ / "reference" / (name_ + ".toml");
+    for (int i = 1; i < argc; ++i) {
+        const std::string arg = argv[i];
+        auto value = [&]() -> std::string {
+            if (i + 1 >= argc) throw InputError("option " + arg + " needs a value");
+            return argv[++i];
+        };
+        if (arg == "--results") results_dir_ = value();
+        else if (arg == "--figures") figures_dir_ = value();
+        else if (arg == "--reference") reference_path = value();
+        else if (arg == "--help" || arg == "-h") {
+            usage(name_);
+            std::exit(0);
+        } else throw InputError("unknown option '" + arg + "' (see --help)");
+    }
+    reference_ = load_reference(reference_path);
+    if (reference_.study != name_)
+        throw InputError(reference_path.string() + " is for study '" + reference_.study + "', not '" + name_ + "'");
+    std::filesystem::create_directories(results_dir_);
+    if (!figures_dir_.empty()) {
+        figures_dir_ = std::filesystem::absolute(figures_dir_);
+        std::filesystem::create_directories(figures_dir_);
+    }
+    results_dir_ = std::filesystem::absolute(results_dir_);
+}
+
+CheckRecord Study::start_record(const ReferenceEntry& e, std::string note) const {
+    CheckRecord r;
+    r.id = e.id;
+    r.source = e.source;
+    r.quantity = e.quantity;
+    r.unit = e.unit;
+    r.basis = e.basis;
+    r.tolerance = e.tolerance;
+    r.reason = e.reason;
+    r.discrepancy = e.discrepancy;
+    r.note = join_joined(e.note, note);
+    return r;
+}
+
+const CheckRecord& Study::add(CheckRecord record) {
+    records_.push_back(std::move(record));
+    return records_.back();
+}
+
+const CheckRecord& Study::check(std::string_view id, double reproduced, std::string note) {
+    const ReferenceEntry& e = reference_.entry(id);
+    if (e.is_trend() || e.is_series())
+        throw std::logic_error("check '" + e.id + "' is not a single number in " + reference_.path.string());
+    checked_ids_.push_back(e.id);
+    CheckRecord r = start_record(e, std::move(note));
+    const double printed = std::get<double>(e.thesis);
+    r.thesis = printed;
+    r.reproduced = reproduced;
+    const double against = e.follows.value_or(printed);
+    if (e.follows) r.reference = *e.follows;
+    if (e.judged) r.passed = e.tolerance->allows(reproduced, against);
+    return add(std::move(r));
+}
+
+void Study::check(std::string_view id, std::span<const double> reproduced, std::string note) {
+    const ReferenceEntry& e = reference_.entry(id);
+    if (!e.is_series()) throw std::logic_error("check '" + e.id + "' is not a series in " + reference_.path.string());
+    const auto& thesis = std::get<std::vector<double>>(e.thesis);
+    if (thesis.size() != reproduced.size())
+        throw std::logic_error("check '" + e.id + "': the thesis has " + std::to_string(thesis.size()) +
+                               " values, the study gave " + std::to_string(reproduced.size()));
+    checked_ids_.push_back(e.id);
+    for (std::size_t k = 0; k < thesis.size(); ++k) {
+        CheckRecord r = start_record(e, note);
+        r.id = e.id + "/" + (e.labels.empty() ? std::to_string(k + 1) : e.labels[k]);
+        r.thesis = thesis[k];
+        r.reproduced = reproduced[k];
+        if (e.judged) r.passed = e.tolerance->allows(reproduced[k], thesis[k]);
+        add(std::move(r));
+    }
+}
+
+const CheckRecord& Study::trend(std::string_view id, std::string reproduced, std::string note) {
+    const ReferenceEntry& e = reference_.entry(id);
+    if (!e.is_trend()) throw std::logic_error("check '" + e.id + "' is not a trend in " + reference_.path.string());
+    const bool holds = reproduced == std::get<std::string>(e.thesis);
+    return trend_holds(id, holds, std::move(reproduced), std::move(note));
+}
+
+const CheckRecord& Study::trend_holds(std::string_view id, bool holds, std::string reproduced, std::string note) {
+    const ReferenceEntry& e = reference_.entry(id);
+    if (!e.is_trend()) throw std::logic_error("check '" + e.id + "' is not a trend in " + reference_.path.string());
+    checked_ids_.push_back(e.id);
+    CheckRecord r = start_record(e, std::move(note));
+    r.thesis = std::get<std::string>(e.thesis);
+    r.reproduced = std::move(reproduced);
+    if (e.judged) r.passed = holds;
+    return add(std::move(r));
+}
+
+void Study::record_run(RunRecord run) { runs_.push_back(std::move(run)); }
+
+void Study::plot() {
+    if (figures_dir_.empty()) return;
+    const auto script = source_dir_ / "studies" / name_ / (name_ + ".gp");
+    io::run_gnuplot(script, {{"results", results_dir_.string()}, {"figures", figures_dir_.string()}});
+}
+
+int Study::finish() {
+    // Every reference entry must have been checked: a study cannot skip a check silently.
+    for (const auto& e : reference_.entries) {
+        if (std::find(checked_ids_.begin(), checked_ids_.end(), e.id) != checked_ids_.end()) continue;
+        CheckRecord r = start_record(e, "the study did not produce this value");
+        if (e.is_trend()) r.thesis = std::get<std::string>(e.thesis);
+        else if (e.is_series()) r.thesis = std::get<std::vector<double>>(e.thesis);
+        else r.thesis = std::get<double>(e.thesis);
+        r.reproduced = nullptr;
+        r.passed = false;
+        add(std::move(r));
+    }
+
+    nlohmann::json checks = nlohmann::json::array();
+    for (const auto& r : records_) checks.push_back(r.to_json());
+    io::write_text_file(results_dir_ / "checks.json", checks.dump(2) + "\n");
+    nlohmann::json runs = nlohmann::json::array();
+    for (const auto& run : runs_) runs.push_back({{"name", run.name}, {"values", run.values}});
+    io::write_text_file(results_dir_ / "runs.json", runs.dump(2) + "\n");
+
+    int failed = 0, passed = 0, shown = 0;
+    std::cout << "\n" << name_ << ": checks against the thesis\n";
+    for (const auto& r : records_) {
+        const char* verdict = !r.passed ? "shown" : (*r.passed ? "pass" : "FAIL");
+        if (!r.passed) ++shown;
+        else if (*r.passed) ++passed;
+        else ++failed;
+        std::cout << "  " << std::left << std::setw(5) << verdict << " " << std::setw(48) << r.id
+                  << " thesis " << r.thesis.dump() << "  ours " << r.reproduced.dump();
+        if (r.reference) std::cout << "  (checked against " << *r.reference << ")";
+        std::cout << '\n';
+    }
+    std::cout << name_ << ": " << passed << " passed, " << failed << " failed, " << shown << " shown\n"
+              << "results: " << results_dir_.string() << "/checks.json\n";
+    return failed == 0 ? 0 : 1;
+}
+
+int run_study(std::string name, int argc, char** argv, const std::function<void(Study&)>& body) {
+    const std::string program = name;
+    return run_program(program.c_str(), [&]() {
+        Study study(std::move(name), argc, argv);
+        body(study);
+        return study.finish();
+    });
+}
+
+}  // namespace fem::check

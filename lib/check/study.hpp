@@ -1,0 +1,105 @@
+#pragma once
+// What a study program uses to compare its results with the thesis. A study:
+//
+//   int main(int argc, char** argv) {
+//       return fem::check::run_study("cfl_tables", argc, argv, [](fem::check::Study& study) {
+//           ...
+//           study.check("table-2-2/quad-2/dt", dt / units::us);          // numeric, from the reference file
+//           study.trend("sec-2.3.5/obs-1", most_sensitive_parameter);    // statement vs statement
+//           study.plot();                                                // runs studies/<name>/<name>.gp
+//       });
+//   }
+//
+// Every check id must exist in reference/<study>.toml (tolerance written before the run), and every
+// entry of that file must be checked: a forgotten entry fails the study. finish() writes
+// build/results/<study>/checks.json (DESIGN.md format), prints a table, and gives the exit status.
+#include <filesystem>
+#include <deque>
+#include <functional>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "check/reference.hpp"
+
+namespace fem::check {
+
+/// One line of checks.json.
+struct CheckRecord {
+    std::string id, source, quantity, unit, basis;
+    nlohmann::json thesis;      // printed value (number or statement)
+    nlohmann::json reproduced;  // ours
+    std::optional<double> reference;  // the value compared against when it is not the printed one
+    std::optional<Tolerance> tolerance;
+    std::optional<bool> passed;  // empty for a value only shown (judged = false)
+    std::string note, discrepancy, reason;
+
+    nlohmann::json to_json() const;
+    static CheckRecord from_json(const nlohmann::json& j);
+    /// Relative deviation of ours from the printed thesis value, when both are numbers.
+    std::optional<double> deviation() const;
+};
+
+/// The run summary of one solver run, listed in the report (wall time, steps, element-cycles/s).
+struct RunRecord {
+    std::string name;
+    nlohmann::json values;  // e.g. {"nodes": 1234, "elements": 1000, "steps": 5000, "wall_s": 1.2, ...}
+};
+
+class Study {
+public:
+    /// Parses the command line (--results DIR, --figures DIR, --reference FILE, --help) and loads
+    /// reference/<name>.toml.
+    Study(std::string name, int argc, char** argv);
+
+    const std::string& name() const { return name_; }
+    /// build/results/<study>/, created on construction.
+    const std::filesystem::path& results_dir() const { return results_dir_; }
+    /// Where figures are drawn (figures/ for `make`, build/figures for CTest); empty: none.
+    const std::filesystem::path& figures_dir() const { return figures_dir_; }
+    const ReferenceFile& reference() const { return reference_; }
+
+    /// Numeric check of `reproduced` against the entry `id`.
+    const CheckRecord& check(std::string_view id, double reproduced, std::string note = {});
+    /// Series check: one record per member, ids "<id>/<label>".
+    void check(std::string_view id, std::span<const double> reproduced, std::string note = {});
+    /// Trend check: passes when our statement equals the thesis's.
+    const CheckRecord& trend(std::string_view id, std::string reproduced, std::string note = {});
+    /// Trend check whose truth the study computes; `reproduced` says what we found.
+    const CheckRecord& trend_holds(std::string_view id, bool holds, std::string reproduced, std::string note = {});
+
+    /// Adds a solver run to runs.json and the report.
+    void record_run(RunRecord run);
+
+    /// Draws the study's figures: runs studies/<name>/<name>.gp with `results` and `figures` set,
+    /// when a figures folder was given.
+    void plot();
+
+    /// Writes checks.json and runs.json, prints the verdicts; returns 0 when every check passed.
+    int finish();
+
+    const std::deque<CheckRecord>& records() const { return records_; }
+
+private:
+    const CheckRecord& add(CheckRecord record);
+    CheckRecord start_record(const ReferenceEntry& e, std::string note) const;
+
+    std::string name_;
+    std::filesystem::path results_dir_, figures_dir_, source_dir_;
+    ReferenceFile reference_;
+    std::deque<CheckRecord> records_;  // deque: references handed out stay valid
+    std::vector<std::string> checked_ids_;
+    std::vector<RunRecord> runs_;
+};
+
+/// main() of a study: builds the Study, runs body, finishes; InputError/SolverError become a
+/// message and a non-zero exit (see fem::run_program).
+int run_study(std::string name, int argc, char** argv, const std::function<void(Study&)>& body);
+
+/// The canonical order of the thesis's studies (DESIGN.md), used by the report.
+const std::vector<std::string>& study_order();
+
+}  // namespace fem::check

@@ -1,0 +1,25 @@
+#include "core/program.hpp"
+
+#include <exception>
+#include <iostream>
+
+#include "core/error.hpp"
+
+namespace fem {
+
+int run_program(const char* program_name, const std::function<int()>& body) {
+    try {
+        return body();
+    } catch (const InputError& e) {
+        std::cerr << program_name << ": input error: " << e.what() << '\n';
+        return 2;
+    } catch (const SolverError& e) {
+        std::cerr << program_name << ": solver error: " << e.what() << '\n';
+        return 3;
+    } catch (const std::exception& e) {
+        std::cerr << program_name << ": error: " << e.what() << '\n';
+        return 4;
+    }
+}
+
+}  // namespace fem

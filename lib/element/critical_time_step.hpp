@@ -1,0 +1,87 @@
+#pragma once
+// Element critical time step, thesis Table 2-1 (after Hallquist 1998, LS-DYNA Theory Manual):
+//
+//   element           characteristic length L_e        wave speed c_w          critical step
+//   beam              element length                   sqrt(E/rho)             L_e / c_w
+//   quad shell        A / max(L1..L4)                  sqrt(E/(rho(1-nu^2)))   L_e / c_w
+//   triangular shell  2A / max(L1..L3)                 sqrt(E/(rho(1-nu^2)))   L_e / c_w
+//   hexahedron        V_e / A_emax (largest face)      dilatational            L_e / (Q + sqrt(Q^2 + c_w^2))
+//   tetrahedron       minimum altitude                 dilatational            L_e / (Q + sqrt(Q^2 + c_w^2))
+//
+// with the bulk-viscosity term Q = C1 c_w + C0 L_e |eps_kk| when the volumetric strain rate
+// eps_kk < 0 (compression) and Q = 0 otherwise. The explicit solver calls critical_time_step() on
+// every element's current coordinates each cycle (Eq 2-27 takes 0.9 x the minimum), so the
+// functions are allocation-free and take the nodes as a span of points.
+#include <array>
+#include <span>
+#include <string_view>
+
+#include "core/types.hpp"
+#include "material/elastic.hpp"
+
+namespace fem {
+
+/// Element geometries the library knows. Shell rows of Table 2-1 apply to Tri3 and Quad4 (and to
+/// the corner nodes of Quad8); solid rows to Hex8 and Tet4 (and to the corner nodes of Tet10).
+enum class ElementShape { Beam2, Tri3, Quad4, Quad8, Tet4, Tet10, Hex8 };
+
+std::string_view to_string(ElementShape shape);
+int node_count(ElementShape shape);
+
+/// Bulk-viscosity coefficients of Table 2-1: C0 quadratic, C1 linear. The defaults are LS-DYNA's
+/// *CONTROL_BULK_VISCOSITY defaults (Q1 = 1.5, Q2 = 0.06), which the thesis ran with.
+struct BulkViscosity {
+    double quadratic = 1.5;  // C0
+    double linear = 0.06;    // C1
+};
+
+namespace cfl {
+
+// --- characteristic lengths (Table 2-1, third column) --------------------------------------------
+
+/// Beam: the element length.
+double beam_length(const Vec3& a, const Vec3& b);
+
+/// Triangular shell: 2A / longest side.
+double triangle_shell_length(const std::array<Vec3, 3>& x);
+
+/// Quadrangular shell: A / longest side. A is the area of the (possibly warped) quadrilateral,
+/// half the norm of the cross product of its diagonals.
+double quad_shell_length(const std::array<Vec3, 4>& x);
+
+/// Hexahedron: V_e / A_emax. V_e is the exact volume of the trilinear element (2x2x2 Gauss
+/// integration of det J is exact for it); face areas as for the quadrangular shell. Node order is
+/// the usual one: 0-3 the bottom face counter-clockwise seen from the top, 4-7 above them.
+double hexahedron_length(const std::array<Vec3, 8>& x);
+
+/// Tetrahedron: the minimum altitude, 3 V / (largest face area).
+double tetrahedron_length(const std::array<Vec3, 4>& x);
+
+/// Characteristic length for any shape from its nodes (corner nodes for Quad8/Tet10).
+double characteristic_length(ElementShape shape, std::span<const Vec3> nodes);
+
+// --- critical time steps (Table 2-1, second column) ----------------------------------------------
+
+/// Beams and shells: L_e / c_w (Eq 2-26).
+double time_step(double length, double wave_speed);
+
+/// Solids with bulk viscosity: L_e / (Q + sqrt(Q^2 + c_w^2)).
+double solid_time_step(double length, double wave_speed, double volumetric_strain_rate,
+                       const BulkViscosity& q);
+
+/// The wave speed Table 2-1 uses for a shape: bar, plate or dilatational.
+double wave_speed(ElementShape shape, const ElasticMaterial& m);
+
+/// The function the explicit solver calls for each element each cycle: the critical time step of
+/// an element with these current nodal coordinates and this material. `volumetric_strain_rate` is
+/// eps_kk (only solids use it, and only when negative).
+double critical_time_step(ElementShape shape, std::span<const Vec3> nodes, const ElasticMaterial& m,
+                          double volumetric_strain_rate = 0.0, const BulkViscosity& q = {});
+
+/// Selective mass scaling (thesis Sec 2.3.5, observation 4): dt ~ sqrt(rho), so multiplying an
+/// element's density by (dt_target / dt)^2 lifts its critical step to dt_target. Returns 1 when the
+/// element already meets the target.
+double density_scale_for_time_step(double dt_element, double dt_target);
+
+}  // namespace cfl
+}  // namespace fem

@@ -1,0 +1,35 @@
+#pragma once
+// Writes a file so that it never exists half-written under its final name: the content goes to a
+// temporary sibling, and commit() renames it into place. A writer destroyed without commit()
+// (an exception on the way) removes the temporary.
+#include <filesystem>
+#include <fstream>
+
+namespace fem::io {
+
+class AtomicFile {
+public:
+    /// Opens `<path>.partial` for writing, creating the parent folders; throws InputError naming
+    /// the path when that fails.
+    explicit AtomicFile(std::filesystem::path path);
+    ~AtomicFile();
+    AtomicFile(const AtomicFile&) = delete;
+    AtomicFile& operator=(const AtomicFile&) = delete;
+
+    std::ostream& stream() { return out_; }
+    /// Flushes, checks the stream and renames the temporary to the final path.
+    void commit();
+    /// The temporary path, for writers (such as HDF5) that open the file themselves.
+    const std::filesystem::path& partial_path() const { return partial_; }
+    const std::filesystem::path& path() const { return path_; }
+
+private:
+    std::filesystem::path path_, partial_;
+    std::ofstream out_;
+    bool committed_ = false;
+};
+
+/// Writes `text` to `path` atomically.
+void write_text_file(const std::filesystem::path& path, const std::string& text);
+
+}  // namespace fem::io

@@ -1,0 +1,234 @@
+// The check module: reference files, tolerances, check records, the report.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include <nlohmann/json.hpp>
+
+#include "check/reference.hpp"
+#include "check/report.hpp"
+#include "check/study.hpp"
+#include "core/error.hpp"
+
+namespace fs = std::filesystem;
+using namespace fem::check;
+
+namespace {
+
+struct TempDir {
+    fs::path path;
+    TempDir() {
+        path = fs::temp_directory_path() / ("fem_check_test_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) + "_" +
+                                            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+        fs::remove_all(path);
+        fs::create_directories(path);
+    }
+    ~TempDir() { fs::remove_all(path); }
+};
+
+void write(const fs::path& p, const std::string& text) {
+    std::ofstream(p) << text;
+}
+
+const char* kReference = R"(
+study = "demo"
+title = "Demo study"
+section = "Sec 9.9"
+[figures]
+"Table 9-1" = ["table-9-1.md"]
+
+[[check]]
+id = "table-9-1/a"
+source = "Table 9-1"
+quantity = "a value"
+unit = "us"
+basis = "exact"
+thesis = 1.32
+tolerance = { abs = 0.005 }
+reason = "printed precision"
+
+[[check]]
+id = "table-9-1/steps"
+source = "Table 9-1"
+quantity = "steps"
+basis = "exact"
+thesis = 1070
+tolerance = { abs = 1.0 }
+reason = "one step"
+follows = 1071.06
+discrepancy = "the printed value is twice another row"
+
+[[check]]
+id = "table-9-1/series"
+source = "Table 9-1"
+quantity = "three values"
+basis = "model"
+thesis = [1.0, 2.0, 3.0]
+tolerance = { rel = 0.1 }
+reason = "mesh"
+
+[[check]]
+id = "fig-9-2/order"
+source = "Fig 9-2"
+quantity = "ordering"
+basis = "trend"
+thesis = "A > B"
+
+[[check]]
+id = "fig-9-2/measured"
+source = "Fig 9-2"
+quantity = "experiment"
+basis = "experiment"
+thesis = 25.0
+judged = false
+)";
+
+std::vector<char*> args(std::vector<std::string>& storage) {
+    std::vector<char*> a;
+    for (auto& s : storage) a.push_back(s.data());
+    return a;
+}
+
+}  // namespace
+
+TEST(Tolerance, AbsPlusRel) {
+    Tolerance t{0.01, 0.5};
+    EXPECT_TRUE(t.allows(101.4, 100.0));   // 1.4 <= 0.5 + 1.0
+    EXPECT_FALSE(t.allows(101.6, 100.0));
+    EXPECT_FALSE(t.allows(NAN, 100.0));
+}
+
+TEST(Reference, LoadsAllKinds) {
+    TempDir dir;
+    write(dir.path / "demo.toml", kReference);
+    const auto ref = load_reference(dir.path / "demo.toml");
+    EXPECT_EQ(ref.study, "demo");
+    ASSERT_EQ(ref.entries.size(), 5u);
+    EXPECT_TRUE(ref.entry("fig-9-2/order").is_trend());
+    EXPECT_TRUE(ref.entry("table-9-1/series").is_series());
+    EXPECT_EQ(*ref.entry("table-9-1/steps").follows, 1071.06);
+    EXPECT_FALSE(ref.entry("fig-9-2/measured").judged);
+    EXPECT_THROW(ref.entry("nope"), std::out_of_range);
+}
+
+TEST(Reference, RefusesBadFilesNamingTheProblem) {
+    TempDir dir;
+    auto expect_error = [&](const std::string& text, const std::string& fragment) {
+        write(dir.path / "bad.toml", text);
+        try {
+            load_reference(dir.path / "bad.toml");
+            ADD_FAILURE() << "accepted: " << text;
+        } catch (const fem::InputError& e) {
+            EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos) << e.what();
+        }
+    };
+    expect_error("study = \"x\"\n[[check]]\nid = \"a\"\nsource = \"T\"\nquantity = \"q\"\nbasis = \"exact\"\nthesis = 1\n",
+                 "needs a tolerance");
+    expect_error("study = \"x\"\n[[check]]\nid = \"a\"\nsource = \"T\"\nquantity = \"q\"\nbasis = \"guess\"\nthesis = 1\n",
+                 "basis 'guess'");
+    expect_error("study = \"x\"\n[[check]]\nid = \"a\"\nsource = \"T\"\nquantity = \"q\"\nbasis = \"exact\"\nthesis = 1\n"
+                 "tolerance = { rel = 0.1 }\n",
+                 "reason");
+    expect_error("study = \"x\"\n[[check]\n", "bad.toml:2");
+    EXPECT_THROW(load_reference(dir.path / "missing.toml"), fem::InputError);
+}
+
+TEST(Study, WritesChecksAndFailsOnMissingOrWrongValues) {
+    TempDir dir;
+    write(dir.path / "demo.toml", kReference);
+    std::vector<std::string> argv_s = {"demo", "--results", (dir.path / "results").string(), "--reference",
+                                       (dir.path / "demo.toml").string()};
+    auto argv = args(argv_s);
+    {
+        Study study("demo", static_cast<int>(argv.size()), argv.data());
+        EXPECT_TRUE(*study.check("table-9-1/a", 1.3204).passed);
+        // 1071.05 misses the printed 1070 by more than a step, but is checked against what follows.
+        const auto& steps = study.check("table-9-1/steps", 1071.05);
+        EXPECT_TRUE(*steps.passed);
+        ASSERT_TRUE(steps.reference.has_value());
+        const std::vector<double> series = {1.05, 2.5, 3.0};
+        study.check("table-9-1/series", series);
+        EXPECT_TRUE(*study.trend("fig-9-2/order", "A > B").passed);
+        // fig-9-2/measured is left out on purpose: finish() must fail the study.
+        EXPECT_EQ(study.finish(), 1);
+    }
+    std::ifstream in(dir.path / "results" / "checks.json");
+    const auto j = nlohmann::json::parse(in);
+    ASSERT_EQ(j.size(), 7u);  // a, steps, 3 series members, trend, missing
+    EXPECT_EQ(j[1]["reference"], 1071.06);
+    EXPECT_EQ(j[3]["id"], "table-9-1/series/2");
+    EXPECT_EQ(j[3]["passed"], false);  // 2.5 vs 2.0 with 10 %
+    EXPECT_TRUE(j[5]["tolerance"].is_null());
+    EXPECT_EQ(j[6]["id"], "fig-9-2/measured");
+    EXPECT_EQ(j[6]["passed"], false);
+    EXPECT_FALSE(fs::exists(dir.path / "results" / "checks.json.partial"));
+}
+
+TEST(Study, ShownValuesAreNotJudgedAndAllPassingExitsZero) {
+    TempDir dir;
+    write(dir.path / "demo.toml", kReference);
+    std::vector<std::string> argv_s = {"demo", "--results", (dir.path / "results").string(), "--reference",
+                                       (dir.path / "demo.toml").string()};
+    auto argv = args(argv_s);
+    Study study("demo", static_cast<int>(argv.size()), argv.data());
+    study.check("table-9-1/a", 1.32);
+    study.check("table-9-1/steps", 1071.0);
+    const std::vector<double> series = {1.0, 2.0, 3.0};
+    study.check("table-9-1/series", series);
+    EXPECT_FALSE(*study.trend_holds("fig-9-2/order", false, "B > A").passed);
+    EXPECT_FALSE(study.check("fig-9-2/measured", 25.5).passed.has_value());
+    EXPECT_EQ(study.finish(), 1);  // the trend failed
+}
+
+TEST(Study, RefusesUnknownIdsAndOptions) {
+    TempDir dir;
+    write(dir.path / "demo.toml", kReference);
+    std::vector<std::string> argv_s = {"demo", "--reference", (dir.path / "demo.toml").string(), "--results",
+                                       (dir.path / "r").string()};
+    auto argv = args(argv_s);
+    Study study("demo", static_cast<int>(argv.size()), argv.data());
+    EXPECT_THROW(study.check("no/such/id", 1.0), std::out_of_range);
+    EXPECT_THROW(study.check("fig-9-2/order", 1.0), std::logic_error);
+    std::vector<std::string> bad = {"demo", "--frobnicate"};
+    auto bad_argv = args(bad);
+    EXPECT_THROW(Study("demo", 2, bad_argv.data()), fem::InputError);
+}
+
+TEST(Report, ListsEveryStudyAndTheDiscrepancies) {
+    TempDir dir;
+    fs::create_directories(dir.path / "reference");
+    write(dir.path / "reference" / "demo.toml", kReference);
+    std::vector<std::string> argv_s = {"demo", "--results", (dir.path / "results" / "demo").string(), "--reference",
+                                       (dir.path / "reference" / "demo.toml").string()};
+    auto argv = args(argv_s);
+    {
+        Study study("demo", static_cast<int>(argv.size()), argv.data());
+        study.check("table-9-1/a", 1.32);
+        study.check("table-9-1/steps", 1071.0);
+        const std::vector<double> series = {1.0, 2.0, 3.0};
+        study.check("table-9-1/series", series);
+        study.trend("fig-9-2/order", "A > B");
+        study.check("fig-9-2/measured", 25.5);
+        study.record_run({"run 1", {{"steps", 100}, {"wall_s", 0.5}}});
+        EXPECT_EQ(study.finish(), 0);
+    }
+    // A second reference file without results: listed as not run.
+    auto other = std::string(kReference);
+    other.replace(other.find("\"demo\""), 6, "\"other\"");
+    write(dir.path / "reference" / "other.toml", other);
+    write(dir.path / "figures_table.md", "");
+    fs::create_directories(dir.path / "figures");
+    write(dir.path / "figures" / "table-9-1.md", "| a |\n|---|\n| 1 |\n");
+
+    EXPECT_EQ(write_report({dir.path / "reference", dir.path / "results", dir.path / "figures"}), 0);
+    std::ifstream md_in(dir.path / "figures" / "REPORT.md");
+    const std::string md((std::istreambuf_iterator<char>(md_in)), {});
+    EXPECT_NE(md.find("## Thesis discrepancies"), std::string::npos);
+    EXPECT_NE(md.find("the printed value is twice another row"), std::string::npos);
+    EXPECT_NE(md.find("### Table 9-1"), std::string::npos);
+    EXPECT_NE(md.find("| other |"), std::string::npos);
+    EXPECT_NE(md.find("not run"), std::string::npos);
+    EXPECT_NE(md.find("Solver runs"), std::string::npos);
+    EXPECT_TRUE(fs::exists(dir.path / "figures" / "REPORT.html"));
+}
