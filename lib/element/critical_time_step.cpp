@@ -2,37 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 #include "core/error.hpp"
 
 namespace fem {
-
-std::string_view to_string(ElementShape shape) {
-    switch (shape) {
-        case ElementShape::Beam2: return "beam2";
-        case ElementShape::Tri3: return "tri3";
-        case ElementShape::Quad4: return "quad4";
-        case ElementShape::Quad8: return "quad8";
-        case ElementShape::Tet4: return "tet4";
-        case ElementShape::Tet10: return "tet10";
-        case ElementShape::Hex8: return "hex8";
-    }
-    return "unknown";
-}
-
-int node_count(ElementShape shape) {
-    switch (shape) {
-        case ElementShape::Beam2: return 2;
-        case ElementShape::Tri3: return 3;
-        case ElementShape::Quad4: return 4;
-        case ElementShape::Quad8: return 8;
-        case ElementShape::Tet4: return 4;
-        case ElementShape::Tet10: return 10;
-        case ElementShape::Hex8: return 8;
-    }
-    return 0;
-}
 
 namespace cfl {
 namespace {
@@ -110,6 +85,7 @@ double characteristic_length(ElementShape shape, std::span<const Vec3> nodes) {
         throw InputError(msg.str());
     }
     switch (shape) {
+        case ElementShape::Point1: return std::numeric_limits<double>::infinity();
         case ElementShape::Beam2: return beam_length(nodes[0], nodes[1]);
         case ElementShape::Tri3: return triangle_shell_length(first_nodes<3>(nodes));
         case ElementShape::Quad4:
@@ -133,6 +109,7 @@ double solid_time_step(double length, double wave_speed, double volumetric_strai
 
 double wave_speed(ElementShape shape, const ElasticMaterial& m) {
     switch (shape) {
+        case ElementShape::Point1: return 0.0;
         case ElementShape::Beam2: return bar_wave_speed(m);
         case ElementShape::Tri3:
         case ElementShape::Quad4:
@@ -146,6 +123,7 @@ double wave_speed(ElementShape shape, const ElasticMaterial& m) {
 
 double critical_time_step(ElementShape shape, std::span<const Vec3> nodes, const ElasticMaterial& m,
                           double volumetric_strain_rate, const BulkViscosity& q) {
+    if (shape == ElementShape::Point1) return std::numeric_limits<double>::infinity();  // a point mass has no wave
     const double length = characteristic_length(shape, nodes);
     const double c = wave_speed(shape, m);
     switch (shape) {

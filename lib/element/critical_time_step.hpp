@@ -14,19 +14,12 @@
 // functions are allocation-free and take the nodes as a span of points.
 #include <array>
 #include <span>
-#include <string_view>
 
 #include "core/types.hpp"
+#include "mesh/element_shape.hpp"
 #include "material/elastic.hpp"
 
 namespace fem {
-
-/// Element geometries the library knows. Shell rows of Table 2-1 apply to Tri3 and Quad4 (and to
-/// the corner nodes of Quad8); solid rows to Hex8 and Tet4 (and to the corner nodes of Tet10).
-enum class ElementShape { Beam2, Tri3, Quad4, Quad8, Tet4, Tet10, Hex8 };
-
-std::string_view to_string(ElementShape shape);
-int node_count(ElementShape shape);
 
 /// Bulk-viscosity coefficients of Table 2-1: C0 quadratic, C1 linear. The defaults are LS-DYNA's
 /// *CONTROL_BULK_VISCOSITY defaults (Q1 = 1.5, Q2 = 0.06), which the thesis ran with.

@@ -1,0 +1,125 @@
+#include "io/hdf5.hpp"
+
+#include <H5Cpp.h>
+
+#include "core/error.hpp"
+
+namespace fem::io {
+
+struct H5Writer::Impl {
+    std::filesystem::path path, partial;
+    H5::H5File file;
+    bool committed = false;
+
+    // Creates the groups along "a/b/c" (not c itself).
+    void make_parents(const std::string& dataset) {
+        std::size_t pos = 0;
+        while ((pos = dataset.find('/', pos + 1)) != std::string::npos) {
+            const std::string group = dataset.substr(0, pos);
+            if (group.empty()) continue;
+            if (!file.nameExists(group)) file.createGroup(group);
+        }
+    }
+    // Calls f(object) with the file, group or dataset called `name` ("/" for the file).
+    template <class F>
+    void with_object(const std::string& name, F&& f) {
+        if (name == "/" || name.empty()) {
+            f(static_cast<H5::H5Object&>(file));
+        } else if (file.childObjType(name) == H5O_TYPE_GROUP) {
+            H5::Group g = file.openGroup(name);
+            f(static_cast<H5::H5Object&>(g));
+        } else {
+            H5::DataSet d = file.openDataSet(name);
+            f(static_cast<H5::H5Object&>(d));
+        }
+    }
+};
+
+H5Writer::H5Writer(std::filesystem::path path) : impl_(std::make_unique<Impl>()) {
+    impl_->path = std::move(path);
+    impl_->partial = impl_->path;
+    impl_->partial += ".partial";
+    if (impl_->path.has_parent_path()) std::filesystem::create_directories(impl_->path.parent_path());
+    try {
+        H5::Exception::dontPrint();
+        impl_->file = H5::H5File(impl_->partial.string(), H5F_ACC_TRUNC);
+    } catch (const H5::Exception& e) {
+        throw InputError("cannot create HDF5 file '" + impl_->path.string() + "': " + e.getDetailMsg());
+    }
+}
+
+H5Writer::~H5Writer() {
+    if (!impl_->committed) {
+        try {
+            impl_->file.close();
+        } catch (...) {
+        }
+        std::error_code ec;
+        std::filesystem::remove(impl_->partial, ec);
+    }
+}
+
+void H5Writer::write(const std::string& dataset, const std::vector<double>& values) {
+    impl_->make_parents(dataset);
+    hsize_t dims[1] = {values.size()};
+    H5::DataSpace space(1, dims);
+    auto ds = impl_->file.createDataSet(dataset, H5::PredType::NATIVE_DOUBLE, space);
+    if (!values.empty()) ds.write(values.data(), H5::PredType::NATIVE_DOUBLE);
+}
+
+void H5Writer::write(const std::string& dataset, const Eigen::MatrixXd& values) {
+    impl_->make_parents(dataset);
+    hsize_t dims[2] = {static_cast<hsize_t>(values.rows()), static_cast<hsize_t>(values.cols())};
+    H5::DataSpace space(2, dims);
+    auto ds = impl_->file.createDataSet(dataset, H5::PredType::NATIVE_DOUBLE, space);
+    const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> row_major = values;
+    if (values.size()) ds.write(row_major.data(), H5::PredType::NATIVE_DOUBLE);
+}
+
+void H5Writer::write_ints(const std::string& dataset, const std::vector<long long>& values) {
+    impl_->make_parents(dataset);
+    hsize_t dims[1] = {values.size()};
+    H5::DataSpace space(1, dims);
+    auto ds = impl_->file.createDataSet(dataset, H5::PredType::NATIVE_LLONG, space);
+    if (!values.empty()) ds.write(values.data(), H5::PredType::NATIVE_LLONG);
+}
+
+void H5Writer::attribute(const std::string& object, const std::string& name, const std::string& value) {
+    impl_->with_object(object, [&](H5::H5Object& obj) {
+        H5::StrType type(H5::PredType::C_S1, value.size() ? value.size() : 1);
+        auto attr = obj.createAttribute(name, type, H5::DataSpace(H5S_SCALAR));
+        attr.write(type, value.c_str());
+    });
+}
+
+void H5Writer::attribute(const std::string& object, const std::string& name, double value) {
+    impl_->with_object(object, [&](H5::H5Object& obj) {
+        auto attr = obj.createAttribute(name, H5::PredType::NATIVE_DOUBLE, H5::DataSpace(H5S_SCALAR));
+        attr.write(H5::PredType::NATIVE_DOUBLE, &value);
+    });
+}
+
+void H5Writer::commit() {
+    impl_->file.close();
+    std::filesystem::rename(impl_->partial, impl_->path);
+    impl_->committed = true;
+}
+
+Eigen::MatrixXd read_h5_matrix(const std::filesystem::path& path, const std::string& dataset) {
+    try {
+        H5::Exception::dontPrint();
+        H5::H5File file(path.string(), H5F_ACC_RDONLY);
+        auto ds = file.openDataSet(dataset);
+        auto space = ds.getSpace();
+        hsize_t dims[2] = {1, 1};
+        const int rank = space.getSimpleExtentDims(dims);
+        const Eigen::Index rows = dims[0], cols = rank == 2 ? dims[1] : 1;
+        Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> m(rows, cols);
+        if (m.size()) ds.read(m.data(), H5::PredType::NATIVE_DOUBLE);
+        return m;
+    } catch (const H5::Exception& e) {
+        throw InputError("cannot read dataset '" + dataset + "' of '" + path.string() + "': " + e.getDetailMsg());
+    }
+}
+
+}  // namespace fem::io

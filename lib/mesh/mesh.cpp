@@ -1,0 +1,197 @@
+#include "mesh/mesh.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "core/error.hpp"
+
+namespace fem {
+
+int Mesh::element_count() const {
+    int n = 0;
+    for (const auto& b : blocks) n += b.size();
+    return n;
+}
+
+const std::vector<int>& Mesh::node_set(std::string_view name) const {
+    auto it = node_sets.find(std::string(name));
+    if (it != node_sets.end()) return it->second;
+    std::ostringstream msg;
+    msg << "node set '" << name << "' does not exist (known:";
+    for (const auto& [n, ids] : node_sets) msg << ' ' << n;
+    msg << ')';
+    throw InputError(msg.str());
+}
+
+std::vector<int> Mesh::blocks_of_part(std::string_view part) const {
+    std::vector<int> ids;
+    for (int b = 0; b < static_cast<int>(blocks.size()); ++b)
+        if (blocks[b].part == part) ids.push_back(b);
+    if (ids.empty()) {
+        std::ostringstream msg;
+        msg << "part '" << part << "' has no elements (parts:";
+        for (const auto& b : blocks) msg << ' ' << b.part;
+        msg << ')';
+        throw InputError(msg.str());
+    }
+    return ids;
+}
+
+std::vector<Vec3> Mesh::element_coordinates(int block, int e) const {
+    std::vector<Vec3> x;
+    for (int n : blocks[block].element(e)) x.push_back(nodes[n]);
+    return x;
+}
+
+void Mesh::append(const Mesh& other) {
+    const int offset = node_count();
+    nodes.insert(nodes.end(), other.nodes.begin(), other.nodes.end());
+    for (ElementBlock b : other.blocks) {
+        for (int& n : b.connectivity) n += offset;
+        blocks.push_back(std::move(b));
+    }
+    for (const auto& [name, ids] : other.node_sets) {
+        auto& mine = node_sets[name];
+        for (int n : ids) mine.push_back(n + offset);
+    }
+}
+
+void Mesh::translate(const Vec3& offset) {
+    for (auto& x : nodes) x += offset;
+}
+
+namespace {
+
+// Signed volume measure at the element centre (det J up to a positive factor), for the inverted-
+// element check. Only solids are checked.
+double centre_jacobian(ElementShape shape, const std::vector<Vec3>& x) {
+    switch (shape) {
+        case ElementShape::Tet4:
+        case ElementShape::Tet10: return (x[1] - x[0]).dot((x[2] - x[0]).cross(x[3] - x[0]));
+        case ElementShape::Hex8: {
+            const Vec3 a = (x[1] + x[2] + x[5] + x[6]) - (x[0] + x[3] + x[4] + x[7]);
+            const Vec3 b = (x[2] + x[3] + x[6] + x[7]) - (x[0] + x[1] + x[4] + x[5]);
+            const Vec3 c = (x[4] + x[5] + x[6] + x[7]) - (x[0] + x[1] + x[2] + x[3]);
+            return a.dot(b.cross(c));
+        }
+        default: return 1.0;
+    }
+}
+
+}  // namespace
+
+void validate(const Mesh& mesh) {
+    for (int i = 0; i < mesh.node_count(); ++i)
+        if (!mesh.nodes[i].allFinite()) throw InputError("node " + std::to_string(i) + " has a non-finite coordinate");
+    for (int b = 0; b < static_cast<int>(mesh.blocks.size()); ++b) {
+        const auto& block = mesh.blocks[b];
+        if (block.connectivity.size() % block.nodes_per_element() != 0)
+            throw InputError("block " + std::to_string(b) + " (part '" + block.part + "'): connectivity length is not a multiple of " +
+                             std::to_string(block.nodes_per_element()));
+        for (int e = 0; e < block.size(); ++e) {
+            auto conn = block.element(e);
+            for (std::size_t k = 0; k < conn.size(); ++k) {
+                if (conn[k] < 0 || conn[k] >= mesh.node_count())
+                    throw InputError("part '" + block.part + "' element " + std::to_string(e) + " refers to node " +
+                                     std::to_string(conn[k]) + ", which does not exist");
+                for (std::size_t j = 0; j < k; ++j)
+                    if (conn[j] == conn[k])
+                        throw InputError("part '" + block.part + "' element " + std::to_string(e) + " repeats node " +
+                                         std::to_string(conn[k]));
+            }
+            if (dimension(block.shape) == 3 && centre_jacobian(block.shape, mesh.element_coordinates(b, e)) <= 0.0)
+                throw InputError("part '" + block.part + "' " + std::string(to_string(block.shape)) + " element " +
+                                 std::to_string(e) + " is inverted (non-positive Jacobian at its centre)");
+        }
+    }
+    for (const auto& [name, ids] : mesh.node_sets)
+        for (int n : ids)
+            if (n < 0 || n >= mesh.node_count())
+                throw InputError("node set '" + name + "' refers to node " + std::to_string(n) + ", which does not exist");
+}
+
+Mesh box_hex8(double lx, double ly, double lz, int nx, int ny, int nz, std::string part) {
+    if (nx < 1 || ny < 1 || nz < 1) throw InputError("box_hex8 needs at least one element per direction");
+    Mesh m;
+    auto id = [&](int i, int j, int k) { return (k * (ny + 1) + j) * (nx + 1) + i; };
+    for (int k = 0; k <= nz; ++k)
+        for (int j = 0; j <= ny; ++j)
+            for (int i = 0; i <= nx; ++i) m.add_node(Vec3(lx * i / nx, ly * j / ny, lz * k / nz));
+    ElementBlock b{std::move(part), ElementShape::Hex8, {}};
+    for (int k = 0; k < nz; ++k)
+        for (int j = 0; j < ny; ++j)
+            for (int i = 0; i < nx; ++i) {
+                const int e[8] = {id(i, j, k),     id(i + 1, j, k),     id(i + 1, j + 1, k),     id(i, j + 1, k),
+                                  id(i, j, k + 1), id(i + 1, j, k + 1), id(i + 1, j + 1, k + 1), id(i, j + 1, k + 1)};
+                b.add(e);
+            }
+    m.blocks.push_back(std::move(b));
+    for (int k = 0; k <= nz; ++k)
+        for (int j = 0; j <= ny; ++j)
+            for (int i = 0; i <= nx; ++i) {
+                const int n = id(i, j, k);
+                if (i == 0) m.node_sets["x0"].push_back(n);
+                if (i == nx) m.node_sets["x1"].push_back(n);
+                if (j == 0) m.node_sets["y0"].push_back(n);
+                if (j == ny) m.node_sets["y1"].push_back(n);
+                if (k == 0) m.node_sets["z0"].push_back(n);
+                if (k == nz) m.node_sets["z1"].push_back(n);
+            }
+    return m;
+}
+
+Mesh rectangle_quads(double lx, double ly, int nx, int ny, ElementShape shape, std::string part) {
+    if (nx < 1 || ny < 1) throw InputError("rectangle_quads needs at least one element per direction");
+    if (shape != ElementShape::Quad4 && shape != ElementShape::Quad8)
+        throw InputError("rectangle_quads makes quad4 or quad8 elements, not " + std::string(to_string(shape)));
+    Mesh m;
+    const bool serendipity = shape == ElementShape::Quad8;
+    // Quad8 uses a grid of half-spacing with the element-centre points left out.
+    const int sx = serendipity ? 2 : 1;
+    const int gx = sx * nx, gy = sx * ny;
+    std::vector<int> id((gx + 1) * (gy + 1), -1);
+    for (int j = 0; j <= gy; ++j)
+        for (int i = 0; i <= gx; ++i) {
+            if (serendipity && i % 2 == 1 && j % 2 == 1) continue;
+            const int n = m.add_node(Vec3(lx * i / gx, ly * j / gy, 0.0));
+            id[j * (gx + 1) + i] = n;
+            if (i == 0) m.node_sets["x0"].push_back(n);
+            if (i == gx) m.node_sets["x1"].push_back(n);
+            if (j == 0) m.node_sets["y0"].push_back(n);
+            if (j == gy) m.node_sets["y1"].push_back(n);
+        }
+    auto at = [&](int i, int j) { return id[j * (gx + 1) + i]; };
+    ElementBlock b{std::move(part), shape, {}};
+    for (int j = 0; j < ny; ++j)
+        for (int i = 0; i < nx; ++i) {
+            const int i0 = sx * i, j0 = sx * j;
+            if (!serendipity) {
+                const int e[4] = {at(i0, j0), at(i0 + 1, j0), at(i0 + 1, j0 + 1), at(i0, j0 + 1)};
+                b.add(e);
+            } else {
+                const int e[8] = {at(i0, j0),     at(i0 + 2, j0),     at(i0 + 2, j0 + 2), at(i0, j0 + 2),
+                                  at(i0 + 1, j0), at(i0 + 2, j0 + 1), at(i0 + 1, j0 + 2), at(i0, j0 + 1)};
+                b.add(e);
+            }
+        }
+    m.blocks.push_back(std::move(b));
+    return m;
+}
+
+Mesh line_beam2(const Vec3& a, const Vec3& b, int n, std::string part) {
+    if (n < 1) throw InputError("line_beam2 needs at least one element");
+    Mesh m;
+    for (int i = 0; i <= n; ++i) m.add_node(a + (b - a) * (static_cast<double>(i) / n));
+    ElementBlock blk{std::move(part), ElementShape::Beam2, {}};
+    for (int i = 0; i < n; ++i) {
+        const int e[2] = {i, i + 1};
+        blk.add(e);
+    }
+    m.blocks.push_back(std::move(blk));
+    m.node_sets["start"] = {0};
+    m.node_sets["end"] = {n};
+    return m;
+}
+
+}  // namespace fem
