@@ -1,0 +1,108 @@
+// Output writers: atomic files, gnuplot tables, VTU/PVD, HDF5.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "core/error.hpp"
+#include "io/atomic_file.hpp"
+#include "io/hdf5.hpp"
+#include "io/table.hpp"
+#include "io/vtu.hpp"
+#include "mesh/mesh.hpp"
+
+namespace fs = std::filesystem;
+using namespace fem;
+
+namespace {
+fs::path scratch(const std::string& name) {
+    auto p = fs::temp_directory_path() / ("fem_io_test_" + name);
+    fs::remove_all(p);
+    fs::create_directories(p);
+    return p;
+}
+std::string slurp(const fs::path& p) {
+    std::ifstream in(p);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+}  // namespace
+
+TEST(AtomicFile, NothingUnderTheFinalNameUntilCommit) {
+    const auto dir = scratch("atomic");
+    {
+        io::AtomicFile f(dir / "a.txt");
+        f.stream() << "hello";
+        EXPECT_FALSE(fs::exists(dir / "a.txt"));
+        f.commit();
+    }
+    EXPECT_EQ(slurp(dir / "a.txt"), "hello");
+    {
+        io::AtomicFile f(dir / "b.txt");
+        f.stream() << "abandoned";
+    }  // destroyed without commit: e.g. an exception on the way
+    EXPECT_FALSE(fs::exists(dir / "b.txt"));
+    EXPECT_FALSE(fs::exists(dir / "b.txt.partial"));
+    EXPECT_THROW(io::AtomicFile(fs::path("/proc/no/such/dir/x.txt")), InputError);
+}
+
+TEST(Table, DatHasHeaderAndRows) {
+    const auto dir = scratch("table");
+    io::Table t;
+    t.add("t", {0, 1, 2}).add("x", {0.5, 1.5, 2.5});
+    io::write_dat(dir / "t.dat", t);
+    EXPECT_EQ(slurp(dir / "t.dat"), "# t x\n0 0.5\n1 1.5\n2 2.5\n");
+    io::write_csv(dir / "t.csv", t);
+    EXPECT_EQ(slurp(dir / "t.csv"), "t,x\n0,0.5\n1,1.5\n2,2.5\n");
+    EXPECT_THROW(t.add("y", {1.0}), std::invalid_argument);
+}
+
+TEST(Vtu, WritesCellsFieldsAndSeries) {
+    const auto dir = scratch("vtu");
+    Mesh m = box_hex8(1, 1, 1, 2, 1, 1);
+    io::VtuData data;
+    data.point_fields.push_back({"displacement", 3, std::vector<double>(3 * m.node_count(), 0.1)});
+    data.cell_fields.push_back({"von_mises", 1, {1.0, 2.0}});
+    io::write_vtu(dir / "box.vtu", m, data);
+    const auto text = slurp(dir / "box.vtu");
+    EXPECT_NE(text.find("NumberOfPoints=\"12\" NumberOfCells=\"2\""), std::string::npos);
+    EXPECT_NE(text.find("Name=\"von_mises\""), std::string::npos);
+    EXPECT_NE(text.find("Name=\"part\""), std::string::npos);
+    // A field of the wrong length is refused before anything is written.
+    data.cell_fields[0].values = {1.0};
+    EXPECT_THROW(io::write_vtu(dir / "bad.vtu", m, data), std::invalid_argument);
+    EXPECT_FALSE(fs::exists(dir / "bad.vtu"));
+
+    data.cell_fields.clear();
+    io::PvdSeries series(dir / "run.pvd");
+    series.add(0.0, m, data);
+    series.add(0.5, m, data);
+    EXPECT_TRUE(fs::exists(dir / "run_0001.vtu"));
+    EXPECT_NE(slurp(dir / "run.pvd").find("timestep=\"0.5\" file=\"run_0001.vtu\""), std::string::npos);
+}
+
+TEST(Hdf5, RoundTripAndAtomic) {
+    const auto dir = scratch("h5");
+    {
+        io::H5Writer h5(dir / "r.h5");
+        h5.write("history/tip/time", std::vector<double>{0, 0.1, 0.2});
+        Eigen::MatrixXd modes(2, 3);
+        modes << 1, 2, 3, 4, 5, 6;
+        h5.write("modes/shapes", modes);
+        h5.write_ints("mesh/ids", {7, 8});
+        h5.attribute("modes/shapes", "unit", "m");
+        h5.attribute("/", "alpha", 7.5);
+        EXPECT_FALSE(fs::exists(dir / "r.h5"));
+        h5.commit();
+    }
+    const auto shapes = io::read_h5_matrix(dir / "r.h5", "modes/shapes");
+    ASSERT_EQ(shapes.rows(), 2);
+    ASSERT_EQ(shapes.cols(), 3);
+    EXPECT_EQ(shapes(1, 2), 6.0);
+    const auto t = io::read_h5_matrix(dir / "r.h5", "history/tip/time");
+    EXPECT_EQ(t.rows(), 3);
+    EXPECT_DOUBLE_EQ(t(2, 0), 0.2);
+    EXPECT_THROW(io::read_h5_matrix(dir / "r.h5", "nope"), InputError);
+}
