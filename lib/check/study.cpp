@@ -204,8 +204,12 @@ void Study::record_run(RunRecord run) { runs_.push_back(std::move(run)); }
 
 void Study::plot() {
     if (figures_dir_.empty()) return;
+    // Each figure is drawn twice, as SVG (for the report) and as PNG: the script writes
+    // figures.'/<name>.'.ext with `set terminal @term size W,H ...`.
     const auto script = source_dir_ / "studies" / name_ / (name_ + ".gp");
-    io::run_gnuplot(script, {{"results", results_dir_.string()}, {"figures", figures_dir_.string()}});
+    for (const auto& [term, ext] : {std::pair{"svg", "svg"}, std::pair{"pngcairo", "png"}})
+        io::run_gnuplot(script, {{"results", results_dir_.string()}, {"figures", figures_dir_.string()},
+                                 {"term", term}, {"ext", ext}});
 }
 
 int Study::finish() {

@@ -74,8 +74,11 @@ public:
     /// Adds a solver run to runs.json and the report.
     void record_run(RunRecord run);
 
-    /// Draws the study's figures: runs studies/<name>/<name>.gp with `results` and `figures` set,
-    /// when a figures folder was given.
+    /// Draws the study's figures when a figures folder was given: runs studies/<name>/<name>.gp
+    /// twice with the string variables results, figures, term and ext set (term 'svg', ext 'svg';
+    /// then term 'pngcairo', ext 'png'). Scripts open each figure with
+    ///   set terminal @term size 900,650 enhanced font 'sans,12' background rgb 'white'
+    ///   set output figures.'/fig-2-6.'.ext
     void plot();
 
     /// Writes checks.json and runs.json, prints the verdicts; returns 0 when every check passed.

@@ -1,7 +1,7 @@
 #pragma once
 // Runs a study's gnuplot script. Scripts receive their folders as string variables, so the same
 // .gp file draws into figures/ for `make all` and into build/figures for CTest:
-//   gnuplot -e "results='build/results/<study>'; figures='figures'" studies/<study>/<study>.gp
+//   gnuplot -e "results='build/results/<study>'; figures='figures'; term='svg'; ext='svg'" studies/<study>/<study>.gp
 #include <filesystem>
 #include <map>
 #include <string>

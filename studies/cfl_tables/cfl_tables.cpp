@@ -91,21 +91,35 @@ int main(int argc, char** argv) {
                         fmt::format("omega_max = {:.6g} rad/s for a 10 mm AL6061 rod", omega_max));
             study.check("eq-2-26/dt-ratio", (2 / omega_max) / cfl::time_step(L, c));
 
-            // Fig for Eq 2-25: the highest frequency of a rod of n lumped elements approaches 2c/L_e
-            // from below as n grows (one element is exactly 2c/L_e).
+            // Figure for Eq 2-25: the highest frequency of an n-element rod, free-free and with
+            // one end fixed, with lumped mass (Eq 2-23) and with consistent mass (rho A L / 6
+            // [2 1; 1 2]). Lumped free-free is exactly 2 c / L_e for every n; one fixed end
+            // approaches it from below; consistent mass gives up to sqrt(3) times more, i.e. a
+            // step sqrt(3) smaller -- one reason explicit codes lump the mass.
+            Eigen::Matrix2d Mc;
+            Mc << 2, 1, 1, 2;
+            Mc *= rho * A * L / 6;
             io::Table conv;
-            std::vector<double> n_el, ratio;
-            for (int n : {1, 2, 4, 8, 16, 32, 64}) {
-                Eigen::MatrixXd Kn = Eigen::MatrixXd::Zero(n + 1, n + 1), Mn = Kn;
+            std::vector<double> n_el, lumped_free, lumped_fixed, consistent_free;
+            for (int n : {1, 2, 3, 4, 6, 8, 12, 16, 24, 32, 48, 64}) {
+                Eigen::MatrixXd Kn = Eigen::MatrixXd::Zero(n + 1, n + 1), Mn = Kn, Mcn = Kn;
                 for (int e = 0; e < n; ++e) {
                     Kn.block<2, 2>(e, e) += K;
                     Mn.block<2, 2>(e, e) += M;
+                    Mcn.block<2, 2>(e, e) += Mc;
                 }
-                Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> en(Kn, Mn, Eigen::EigenvaluesOnly);
+                auto omega_max_ratio = [&](const Eigen::MatrixXd& k, const Eigen::MatrixXd& m) {
+                    Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> en(k, m, Eigen::EigenvaluesOnly);
+                    return std::sqrt(en.eigenvalues().maxCoeff()) / (2 * c / L);
+                };
                 n_el.push_back(n);
-                ratio.push_back(std::sqrt(en.eigenvalues().maxCoeff()) / (2 * c / L));
+                lumped_free.push_back(omega_max_ratio(Kn, Mn));
+                consistent_free.push_back(omega_max_ratio(Kn, Mcn));
+                // Node 0 fixed: drop its row and column.
+                lumped_fixed.push_back(omega_max_ratio(Kn.bottomRightCorner(n, n), Mn.bottomRightCorner(n, n)));
             }
-            conv.add("elements", n_el).add("omega_max_over_2c_per_L", ratio);
+            conv.add("elements", n_el).add("lumped_free_free", lumped_free).add("lumped_fixed_free", lumped_fixed)
+                .add("consistent_free_free", consistent_free);
             io::write_dat(out / "eq-2-25.dat", conv);
         }
 
