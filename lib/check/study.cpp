@@ -200,6 +200,11 @@ const CheckRecord& Study::trend_holds(std::string_view id, bool holds, std::stri
     return add(std::move(r));
 }
 
+void Study::write_markdown(const std::string& file_name, const std::string& text) const {
+    io::write_text_file(results_dir_ / file_name, text);
+    if (!figures_dir_.empty()) io::write_text_file(figures_dir_ / file_name, text);
+}
+
 void Study::record_run(RunRecord run) { runs_.push_back(std::move(run)); }
 
 void Study::plot() {

@@ -71,6 +71,10 @@ public:
     /// Trend check whose truth the study computes; `reproduced` says what we found.
     const CheckRecord& trend_holds(std::string_view id, bool holds, std::string reproduced, std::string note = {});
 
+    /// Writes a regenerated thesis table (Markdown, e.g. "table-2-2.md") into the results folder and,
+    /// when figures are drawn, into the figures folder beside them (the report shows it there).
+    void write_markdown(const std::string& file_name, const std::string& text) const;
+
     /// Adds a solver run to runs.json and the report.
     void record_run(RunRecord run);
 

@@ -23,9 +23,9 @@ int vtk_cell_type(ElementShape s) {
     return 0;
 }
 
-// Our (Gmsh) tet10 order has mid-edge nodes 01 12 02 03 13 23; VTK wants 01 12 02 03 13 23 too
-// except that Gmsh numbers the last two as 23, 13: see element_shape.hpp. We store Gmsh order
-// and swap nodes 8 and 9 for VTK.
+// Our tet10 order is Gmsh's (mid-edge nodes on edges 01 12 20 03 23 13, see mesh/element_shape.hpp);
+// VTK's quadratic tetra wants 01 12 02 03 13 23, so the last two mid-edge nodes are swapped
+// on output.
 int vtk_node(ElementShape s, int k) {
     if (s == ElementShape::Tet10 && (k == 8 || k == 9)) return 17 - k;
     return k;

@@ -1,8 +1,10 @@
 #pragma once
 // The element geometries the library knows, with their node counts and node orderings. Node order
-// follows VTK/Gmsh conventions (corner nodes first, counter-clockwise; hexahedron: bottom face 0-3,
-// top face 4-7 above them; tet10: corners 0-3 then mid-edge nodes 01, 12, 02, 03, 13, 23 as in
-// Gmsh (VTK swaps the last two: the VTU writer converts)).
+// is Gmsh's (corner nodes first, counter-clockwise; quad8: mid-edge nodes 01, 12, 23, 30;
+// hexahedron: bottom face 0-3, top face 4-7 above them; tet10: corners 0-3 then mid-edge nodes on
+// edges 01, 12, 20, 03, 23, 13, i.e. node 8 between corners 2 and 3 and node 9 between 1 and 3 --
+// verified with gmsh::model::mesh::getElementProperties, see mesh/gmsh.hpp). VTK's quadratic tetra
+// takes 01, 12, 02, 03, 13, 23: nodes 8 and 9 swapped, which the VTU writer converts.
 #include <string_view>
 
 namespace fem {

@@ -285,12 +285,8 @@ int main(int argc, char** argv) {
         }
 
         // Tables as Markdown for the report, and the figures.
-        if (!study.figures_dir().empty()) {
-            io::write_text_file(study.figures_dir() / "table-2-1.md", table21.str());
-            io::write_text_file(study.figures_dir() / "table-2-2.md", table22.str());
-        }
-        io::write_text_file(out / "table-2-1.md", table21.str());
-        io::write_text_file(out / "table-2-2.md", table22.str());
+        study.write_markdown("table-2-1.md", table21.str());
+        study.write_markdown("table-2-2.md", table22.str());
         study.plot();
     });
 }

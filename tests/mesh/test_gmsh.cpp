@@ -1,0 +1,265 @@
+// The Gmsh reader: meshes made with the Gmsh API, written as .msh 2.2 and 4.1 (ASCII and binary),
+// read back and compared with the in-memory model and with exact geometry; hand-written files for
+// node order and errors.
+#include <gtest/gtest.h>
+#include <gmsh.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <fstream>
+
+#include "core/error.hpp"
+#include "mesh/finger.hpp"
+#include "mesh/gmsh.hpp"
+
+using namespace fem;
+namespace fs = std::filesystem;
+
+namespace {
+
+// A scratch directory removed at the end of the test.
+struct TempDir {
+    fs::path path;
+    TempDir() {
+        static std::atomic<int> counter{0};
+        path = fs::temp_directory_path() / ("fem_test_mesh_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
+        fs::create_directories(path);
+    }
+    ~TempDir() {
+        std::error_code ec;
+        fs::remove_all(path, ec);
+    }
+    fs::path file(const std::string& name) const { return path / name; }
+};
+
+void write_text(const fs::path& p, const std::string& text) { std::ofstream(p) << text; }
+
+// Writes the current Gmsh model in the given format.
+void write_model(const fs::path& p, double version, bool binary) {
+    gmsh::option::setNumber("Mesh.MshFileVersion", version);
+    gmsh::option::setNumber("Mesh.Binary", binary ? 1 : 0);
+    gmsh::write(p.string());
+}
+
+// 1 x 2 x 3 box of tetrahedra (order 1 or 2), physical volume "solid" and surface "bottom" (z = 0).
+void make_box_model(int order) {
+    gmsh::clear();
+    gmsh::model::add("box");
+    const int v = gmsh::model::occ::addBox(0, 0, 0, 1, 2, 3);
+    gmsh::model::occ::synchronize();
+    gmsh::model::setPhysicalName(3, gmsh::model::addPhysicalGroup(3, {v}), "solid");
+    gmsh::vectorpair bottom;
+    gmsh::model::getEntitiesInBoundingBox(-1, -1, -1e-6, 2, 3, 1e-6, bottom, 2);
+    ASSERT_EQ(bottom.size(), 1u);
+    gmsh::model::setPhysicalName(2, gmsh::model::addPhysicalGroup(2, {bottom[0].second}), "bottom");
+    gmsh::option::setNumber("Mesh.MeshSizeMax", 0.7);
+    gmsh::option::setNumber("Mesh.SecondOrderLinear", 0);
+    gmsh::model::mesh::generate(3);
+    if (order == 2) gmsh::model::mesh::setOrder(2);
+}
+
+std::vector<std::array<double, 3>> coordinates(const Mesh& m) {
+    std::vector<std::array<double, 3>> c;
+    for (const auto& x : m.nodes) c.push_back({x.x(), x.y(), x.z()});
+    return c;
+}
+
+}  // namespace
+
+// The round trip in all four encodings: the same nodes, elements and node sets as the model in
+// memory, and the exact volume of the box.
+TEST(ReadGmsh, RoundTripAllFormats) {
+    TempDir dir;
+    struct Format { double version; bool binary; const char* name; };
+    const Format formats[] = {{2.2, false, "v22_ascii.msh"}, {2.2, true, "v22_binary.msh"},
+                              {4.1, false, "v41_ascii.msh"}, {4.1, true, "v41_binary.msh"}};
+    Mesh expected;
+    {
+        GmshSession session;
+        make_box_model(1);
+        expected = mesh_from_gmsh_model();
+        for (const auto& f : formats) write_model(dir.file(f.name), f.version, f.binary);
+        gmsh::clear();
+    }
+    ASSERT_EQ(expected.blocks.size(), 1u);  // "bottom" is a boundary face: a node set, not a block
+    EXPECT_EQ(expected.blocks[0].part, "solid");
+    EXPECT_EQ(expected.blocks[0].shape, ElementShape::Tet4);
+    EXPECT_THROW(expected.blocks_of_part("bottom"), InputError);
+    for (const auto& f : formats) {
+        SCOPED_TRACE(f.name);
+        const Mesh m = read_gmsh(dir.file(f.name));
+        EXPECT_EQ(m.node_count(), expected.node_count());
+        EXPECT_EQ(m.element_count(), expected.element_count());
+        ASSERT_EQ(m.blocks.size(), 1u);
+        EXPECT_EQ(m.blocks[0].part, "solid");
+        EXPECT_EQ(m.blocks[0].shape, ElementShape::Tet4);
+        EXPECT_EQ(m.blocks[0].connectivity, expected.blocks[0].connectivity);
+        // Binary files carry the doubles exactly; ASCII ones with 16 significant digits (Gmsh's
+        // %.16g): coordinates up to 3 are within 3 * 10^-15 (half a unit in the 16th digit, x10 margin).
+        // Gmsh keeps node tags in the file, so both meshes number their nodes alike.
+        const auto got = coordinates(m), want = coordinates(expected);
+        ASSERT_EQ(got.size(), want.size());
+        double worst = 0.0;
+        for (std::size_t i = 0; i < got.size(); ++i)
+            for (int d = 0; d < 3; ++d) worst = std::max(worst, std::abs(got[i][d] - want[i][d]));
+        if (f.binary) EXPECT_EQ(worst, 0.0);
+        else EXPECT_LT(worst, 3e-15);
+        EXPECT_NEAR(finger::mesh_quality(m).volume, 6.0, 1e-12);           // a box is meshed exactly
+        ASSERT_EQ(m.node_set("bottom").size(), expected.node_set("bottom").size());
+        for (int n : m.node_set("bottom")) EXPECT_EQ(m.nodes[n].z(), 0.0);
+        // Contiguous 0-based numbering: every node is used.
+        std::vector<bool> used(m.node_count(), false);
+        for (int n : m.blocks[0].connectivity) used[n] = true;
+        EXPECT_TRUE(std::all_of(used.begin(), used.end(), [](bool u) { return u; }));
+    }
+}
+
+// Straight-sided 10-node tetrahedra: every mid-edge node is the midpoint of the edge our convention
+// (element_shape.hpp: 01, 12, 20, 03, 23, 13) assigns to it. With VTK's order (13 before 23) nodes 8
+// and 9 would fail.
+TEST(ReadGmsh, Tet10MidEdgeOrder) {
+    TempDir dir;
+    {
+        GmshSession session;
+        make_box_model(2);
+        write_model(dir.file("tet10.msh"), 4.1, false);
+        gmsh::clear();
+    }
+    const Mesh m = read_gmsh(dir.file("tet10.msh"));
+    ASSERT_EQ(m.blocks.size(), 1u);
+    ASSERT_EQ(m.blocks[0].shape, ElementShape::Tet10);
+    const int edge[6][2] = {{0, 1}, {1, 2}, {2, 0}, {0, 3}, {2, 3}, {1, 3}};
+    for (int e = 0; e < m.blocks[0].size(); ++e) {
+        const auto x = m.element_coordinates(0, e);
+        for (int k = 0; k < 6; ++k)
+            ASSERT_LT((x[4 + k] - 0.5 * (x[edge[k][0]] + x[edge[k][1]])).norm(), 1e-12) << "element " << e << " node " << 4 + k;
+    }
+    const auto q = finger::mesh_quality(m);
+    EXPECT_NEAR(q.volume, 6.0, 1e-12);
+    EXPECT_NEAR(q.min_jacobian_ratio, 1.0, 1e-9);  // straight sides: the quadratic map is affine
+}
+
+// Serendipity quadrilaterals (Gmsh type 16) in format 2.2: mid-edge nodes 01, 12, 23, 30.
+TEST(ReadGmsh, Quad8Plate) {
+    TempDir dir;
+    {
+        GmshSession session;
+        gmsh::clear();
+        const int s = gmsh::model::occ::addRectangle(0, 0, 0, 2, 1);
+        gmsh::model::occ::synchronize();
+        gmsh::model::setPhysicalName(2, gmsh::model::addPhysicalGroup(2, {s}), "plate");
+        gmsh::option::setNumber("Mesh.MeshSizeMax", 0.3);
+        gmsh::option::setNumber("Mesh.RecombineAll", 1);
+        gmsh::option::setNumber("Mesh.SecondOrderIncomplete", 1);
+        gmsh::model::mesh::generate(2);
+        gmsh::model::mesh::setOrder(2);
+        write_model(dir.file("quad8.msh"), 2.2, false);
+        gmsh::clear();
+    }
+    const Mesh m = read_gmsh(dir.file("quad8.msh"));
+    ASSERT_EQ(m.blocks.size(), 1u);
+    ASSERT_EQ(m.blocks[0].shape, ElementShape::Quad8);
+    EXPECT_EQ(m.blocks[0].part, "plate");
+    double area = 0.0;
+    for (int e = 0; e < m.blocks[0].size(); ++e) {
+        const auto x = m.element_coordinates(0, e);
+        for (int k = 0; k < 4; ++k) {
+            area += 0.5 * (x[k].x() * x[(k + 1) % 4].y() - x[(k + 1) % 4].x() * x[k].y());
+            EXPECT_LT((x[4 + k] - 0.5 * (x[k] + x[(k + 1) % 4])).norm(), 1e-12);
+        }
+    }
+    EXPECT_NEAR(area, 2.0, 1e-12);
+    // The plate is a 2D model: its physical surface is a block and a node set.
+    EXPECT_EQ(m.node_set("plate").size(), static_cast<std::size_t>(m.node_count()));
+}
+
+// Hexahedra (transfinite, recombined) plus a free-standing beam and point mass: the curve and the
+// point are not on the solid's boundary, so they are blocks too.
+TEST(ReadGmsh, HexBeamAndPointBlocks) {
+    TempDir dir;
+    {
+        GmshSession session;
+        gmsh::clear();
+        const int v = gmsh::model::occ::addBox(0, 0, 0, 1, 1, 2);
+        const int p0 = gmsh::model::occ::addPoint(3, 0, 0), p1 = gmsh::model::occ::addPoint(3, 0, 1);
+        const int line = gmsh::model::occ::addLine(p0, p1);
+        const int mass = gmsh::model::occ::addPoint(5, 5, 5);
+        gmsh::model::occ::synchronize();
+        gmsh::model::setPhysicalName(3, gmsh::model::addPhysicalGroup(3, {v}), "brick");
+        gmsh::model::setPhysicalName(1, gmsh::model::addPhysicalGroup(1, {line}), "beam");
+        gmsh::model::setPhysicalName(0, gmsh::model::addPhysicalGroup(0, {mass}), "mass");
+        gmsh::option::setNumber("Mesh.MeshSizeMax", 0.5);
+        gmsh::model::mesh::setTransfiniteAutomatic();  // every entity: recombined, so hexahedra
+        gmsh::model::mesh::setTransfiniteCurve(line, 6);
+        gmsh::model::mesh::generate(3);
+        write_model(dir.file("hex.msh"), 4.1, true);
+        gmsh::clear();
+    }
+    const Mesh m = read_gmsh(dir.file("hex.msh"));
+    const auto brick = m.blocks[m.blocks_of_part("brick").at(0)];
+    const auto beam = m.blocks[m.blocks_of_part("beam").at(0)];
+    const auto mass = m.blocks[m.blocks_of_part("mass").at(0)];
+    EXPECT_EQ(brick.shape, ElementShape::Hex8);
+    EXPECT_EQ(beam.shape, ElementShape::Beam2);
+    EXPECT_EQ(beam.size(), 5);
+    EXPECT_EQ(mass.shape, ElementShape::Point1);
+    EXPECT_EQ(mass.size(), 1);
+    const auto q = finger::mesh_quality(m);
+    EXPECT_NEAR(q.volume, 2.0, 1e-12);
+    EXPECT_NEAR(q.min_scaled_jacobian, 1.0, 1e-9);  // a transfinite box is made of bricks
+    EXPECT_EQ(m.node_set("beam").size(), 6u);
+    EXPECT_EQ(m.node_set("mass").size(), 1u);
+}
+
+// A hand-written 2.2 file: the reader keeps Gmsh's node order and renumbers sparse tags.
+TEST(ReadGmsh, HandWrittenTet10KeepsNodeOrder) {
+    TempDir dir;
+    write_text(dir.file("one.msh"),
+               "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n"
+               "$PhysicalNames\n1\n3 7 \"rubber\"\n$EndPhysicalNames\n"
+               "$Nodes\n10\n"
+               "10 0 0 0\n20 1 0 0\n30 0 1 0\n40 0 0 1\n"
+               "50 0.5 0 0\n60 0.5 0.5 0\n70 0 0.5 0\n80 0 0 0.5\n90 0 0.5 0.5\n100 0.5 0 0.5\n"
+               "$EndNodes\n"
+               "$Elements\n1\n1 11 2 7 1 10 20 30 40 50 60 70 80 90 100\n$EndElements\n");
+    const Mesh m = read_gmsh(dir.file("one.msh"));
+    ASSERT_EQ(m.node_count(), 10);
+    ASSERT_EQ(m.blocks.size(), 1u);
+    EXPECT_EQ(m.blocks[0].part, "rubber");
+    EXPECT_EQ(m.blocks[0].shape, ElementShape::Tet10);
+    for (int k = 0; k < 10; ++k) EXPECT_EQ(m.blocks[0].connectivity[k], k);  // tags 10..100 -> 0..9 in order
+    EXPECT_EQ(m.nodes[8], Vec3(0, 0.5, 0.5));                                  // node 8: edge 23
+    EXPECT_NEAR(finger::mesh_quality(m).volume, 1.0 / 6.0, 1e-14);
+}
+
+TEST(ReadGmsh, ErrorsNameTheFile) {
+    TempDir dir;
+    auto expect_error = [](const fs::path& p, const std::string& needle) {
+        try {
+            read_gmsh(p);
+            ADD_FAILURE() << "no error for " << p;
+        } catch (const InputError& e) {
+            const std::string what = e.what();
+            EXPECT_NE(what.find(p.filename().string()), std::string::npos) << what;
+            EXPECT_NE(what.find(needle), std::string::npos) << what;
+        }
+    };
+    expect_error(dir.file("missing.msh"), "does not exist");
+    write_text(dir.file("bad.msh"), "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Nodes\ngarbage\n");
+    expect_error(dir.file("bad.msh"), "malformed");
+    write_text(dir.file("empty.msh"), "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n");
+    expect_error(dir.file("empty.msh"), "no elements");
+    write_text(dir.file("mesh.geo"), "Point(1) = {0, 0, 0};\n");
+    expect_error(dir.file("mesh.geo"), ".msh");
+    // An inverted tetrahedron (corners 1 and 2 swapped) fails validation.
+    write_text(dir.file("inverted.msh"),
+               "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n4\n1 0 0 0\n2 1 0 0\n3 0 1 0\n4 0 0 1\n$EndNodes\n"
+               "$Elements\n1\n1 4 2 1 1 1 3 2 4\n$EndElements\n");
+    expect_error(dir.file("inverted.msh"), "inverted");
+    // Second-order triangles as a free-standing surface: a type the library has no element for.
+    write_text(dir.file("tri6.msh"),
+               "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n6\n1 0 0 0\n2 1 0 0\n3 0 1 0\n4 0.5 0 0\n5 0.5 0.5 0\n6 0 0.5 0\n"
+               "$EndNodes\n$Elements\n1\n1 9 2 1 1 1 2 3 4 5 6\n$EndElements\n");
+    expect_error(dir.file("tri6.msh"), "Triangle 6");
+}
