@@ -1,5 +1,7 @@
 #include "io/vtu.hpp"
 
+#include <cstdint>
+#include <cstring>
 #include <iomanip>
 #include <sstream>
 #include <stdexcept>
@@ -31,15 +33,46 @@ int vtk_node(ElementShape s, int k) {
     return k;
 }
 
-void write_field(std::ostream& out, const Field& f, std::size_t expected_count, const char* where) {
+// VTU "binary" inline data: base64 of a UInt64 byte count followed by the raw little-endian
+// values. About 3x smaller and much faster to write than ASCII for the meshes of the studies.
+void base64(std::ostream& out, const unsigned char* data, std::size_t n) {
+    static constexpr char table[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    std::string line;
+    line.reserve((n + 2) / 3 * 4);
+    for (std::size_t i = 0; i < n; i += 3) {
+        const unsigned b0 = data[i], b1 = i + 1 < n ? data[i + 1] : 0, b2 = i + 2 < n ? data[i + 2] : 0;
+        line += table[b0 >> 2];
+        line += table[((b0 & 3) << 4) | (b1 >> 4)];
+        line += i + 1 < n ? table[((b1 & 15) << 2) | (b2 >> 6)] : '=';
+        line += i + 2 < n ? table[b2 & 63] : '=';
+    }
+    out << line;
+}
+
+template <class T>
+void data_array(std::ostream& out, const char* type, const std::string& name, int components, const std::vector<T>& values) {
+    out << "        <DataArray type=\"" << type << "\"";
+    if (!name.empty()) out << " Name=\"" << name << "\"";
+    if (components > 1) out << " NumberOfComponents=\"" << components << "\"";
+    out << " format=\"binary\">\n          ";
+    std::vector<unsigned char> bytes(sizeof(std::uint64_t) + values.size() * sizeof(T));
+    const std::uint64_t size = values.size() * sizeof(T);
+    std::memcpy(bytes.data(), &size, sizeof size);
+    if (!values.empty()) std::memcpy(bytes.data() + sizeof size, values.data(), size);
+    base64(out, bytes.data(), bytes.size());
+    out << "\n        </DataArray>\n";
+}
+
+void check_field(const Field& f, std::size_t expected_count, const char* where) {
     if (f.values.size() != expected_count * f.components)
         throw std::invalid_argument(std::string("VTU ") + where + " field '" + f.name + "' has " +
                                     std::to_string(f.values.size()) + " values, expected " +
                                     std::to_string(expected_count * f.components));
-    out << "        <DataArray type=\"Float64\" Name=\"" << f.name << "\" NumberOfComponents=\"" << f.components
-        << "\" format=\"ascii\">\n";
-    for (std::size_t i = 0; i < f.values.size(); ++i) out << f.values[i] << ((i + 1) % 9 ? ' ' : '\n');
-    out << "\n        </DataArray>\n";
+}
+
+void write_field(std::ostream& out, const Field& f) {
+    // Fields are for viewing: single precision is plenty and halves the file.
+    data_array(out, "Float32", f.name, f.components, std::vector<float>(f.values.begin(), f.values.end()));
 }
 
 }  // namespace
@@ -48,36 +81,39 @@ void write_vtu(const std::filesystem::path& path, const Mesh& mesh, const VtuDat
     if (x.empty()) x = mesh.nodes;
     if (static_cast<int>(x.size()) != mesh.node_count())
         throw std::invalid_argument("VTU coordinates do not match the mesh's node count");
+    // Check every field before anything is written.
+    const int cells = mesh.element_count();
+    for (const auto& f : data.point_fields) check_field(f, mesh.node_count(), "point");
+    for (const auto& f : data.cell_fields) check_field(f, cells, "cell");
     AtomicFile file(path);
     auto& out = file.stream();
-    out << std::setprecision(9);
-    const int cells = mesh.element_count();
-    out << "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
-        << "  <UnstructuredGrid>\n    <Piece NumberOfPoints=\"" << mesh.node_count() << "\" NumberOfCells=\"" << cells
-        << "\">\n      <Points>\n        <DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n";
-    for (const auto& p : x) out << p.x() << ' ' << p.y() << ' ' << p.z() << '\n';
-    out << "        </DataArray>\n      </Points>\n      <Cells>\n"
-        << "        <DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n";
+    out << "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\""
+           " header_type=\"UInt64\">\n  <UnstructuredGrid>\n    <Piece NumberOfPoints=\""
+        << mesh.node_count() << "\" NumberOfCells=\"" << cells << "\">\n      <Points>\n";
+    std::vector<double> points;
+    points.reserve(3 * x.size());
+    for (const auto& p : x) points.insert(points.end(), {p.x(), p.y(), p.z()});
+    data_array(out, "Float64", "", 3, points);
+    out << "      </Points>\n      <Cells>\n";
+    std::vector<std::int64_t> connectivity, offsets;
+    std::vector<std::uint8_t> types;
     for (const auto& b : mesh.blocks)
         for (int e = 0; e < b.size(); ++e) {
             auto conn = b.element(e);
-            for (int k = 0; k < b.nodes_per_element(); ++k) out << conn[vtk_node(b.shape, k)] << ' ';
-            out << '\n';
+            for (int k = 0; k < b.nodes_per_element(); ++k) connectivity.push_back(conn[vtk_node(b.shape, k)]);
+            offsets.push_back(static_cast<std::int64_t>(connectivity.size()));
+            types.push_back(static_cast<std::uint8_t>(vtk_cell_type(b.shape)));
         }
-    out << "        </DataArray>\n        <DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n";
-    long offset = 0;
-    for (const auto& b : mesh.blocks)
-        for (int e = 0; e < b.size(); ++e) out << (offset += b.nodes_per_element()) << '\n';
-    out << "        </DataArray>\n        <DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n";
-    for (const auto& b : mesh.blocks)
-        for (int e = 0; e < b.size(); ++e) out << vtk_cell_type(b.shape) << '\n';
-    out << "        </DataArray>\n      </Cells>\n      <PointData>\n";
-    for (const auto& f : data.point_fields) write_field(out, f, mesh.node_count(), "point");
+    data_array(out, "Int64", "connectivity", 1, connectivity);
+    data_array(out, "Int64", "offsets", 1, offsets);
+    data_array(out, "UInt8", "types", 1, types);
+    out << "      </Cells>\n      <PointData>\n";
+    for (const auto& f : data.point_fields) write_field(out, f);
     out << "      </PointData>\n      <CellData>\n";
     Field part{"part", 1, {}};
     for (int b = 0; b < static_cast<int>(mesh.blocks.size()); ++b) part.values.insert(part.values.end(), mesh.blocks[b].size(), b);
-    write_field(out, part, cells, "cell");
-    for (const auto& f : data.cell_fields) write_field(out, f, cells, "cell");
+    write_field(out, part);
+    for (const auto& f : data.cell_fields) write_field(out, f);
     out << "      </CellData>\n    </Piece>\n  </UnstructuredGrid>\n</VTKFile>\n";
     file.commit();
 }

@@ -68,6 +68,7 @@ TEST(Vtu, WritesCellsFieldsAndSeries) {
     io::write_vtu(dir / "box.vtu", m, data);
     const auto text = slurp(dir / "box.vtu");
     EXPECT_NE(text.find("NumberOfPoints=\"12\" NumberOfCells=\"2\""), std::string::npos);
+    EXPECT_NE(text.find("format=\"binary\""), std::string::npos);
     EXPECT_NE(text.find("Name=\"von_mises\""), std::string::npos);
     EXPECT_NE(text.find("Name=\"part\""), std::string::npos);
     // A field of the wrong length is refused before anything is written.
