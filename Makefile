@@ -16,7 +16,8 @@ DEB_PACKAGES := cmake make g++ pkg-config \
   libeigen3-dev libspectra-dev libgsl-dev libhdf5-dev hdf5-tools \
   nlohmann-json3-dev libtomlplusplus-dev libfmt-dev \
   libgtest-dev libgmock-dev libbenchmark-dev \
-  gnuplot-nox gmsh libgmsh-dev calculix-ccx
+  gnuplot-nox gmsh libgmsh-dev calculix-ccx \
+  libsuitesparse-dev libopenblas0-serial
 
 STUDIES := $(sort $(notdir $(patsubst %/,%,$(dir $(wildcard studies/*/CMakeLists.txt)))))
 

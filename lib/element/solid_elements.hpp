@@ -1,0 +1,56 @@
+#pragma once
+// Linear solid elements for implicit (modal) analysis: the element stiffness K = int B^T D B dV and
+// mass M = int rho N^T N dV (thesis Eq 2-36/2-38 need both) of the 8-node hexahedron and the 10-node
+// tetrahedron. Three displacement DOFs per node, ordered ux, uy, uz node after node, so the matrices
+// are 3n x 3n with n = 8 or 10. Node orders are the library's (mesh/element_shape.hpp): hex8 bottom
+// face 0-3 counter-clockwise then the top face; tet10 corners 0-3 then the mid-edge nodes of edges
+// 01, 12, 02, 03, 23, 13 (Gmsh order; CalculiX C3D10 and VTK swap the last two).
+#include <span>
+
+#include <Eigen/Core>
+
+#include "core/types.hpp"
+#include "material/elastic.hpp"
+
+namespace fem::solid {
+
+enum class MassKind {
+    Consistent,  // int rho N^T N dV
+    Lumped,      // diagonal: row sums for hex8; HRZ (diagonal scaled to the element mass) for tet10,
+                 // because the row sums of the tet10 corner nodes are negative
+};
+
+/// Isotropic elasticity matrix D (6 x 6) in Voigt order xx, yy, zz, xy, yz, zx with engineering
+/// shear strains.
+Eigen::Matrix<double, 6, 6> elasticity_matrix(const ElasticMaterial& m);
+
+/// Hex8 stiffness (24 x 24), 2x2x2 Gauss. With incompatible_modes the element gets the nine
+/// Wilson-Taylor bubble modes (1 - xi^2 etc., statically condensed, with Taylor's centre-Jacobian
+/// correction so the patch test passes): it then bends like a quadratic element instead of locking
+/// in shear, which is what thin cantilever modes need. Without them it is the plain trilinear brick.
+/// Throws InputError when the Jacobian is non-positive at an integration point.
+Eigen::MatrixXd hex8_stiffness(std::span<const Vec3> x, const ElasticMaterial& m, bool incompatible_modes = true);
+
+/// Hex8 mass (24 x 24): consistent with 2x2x2 Gauss (exact for parallelepipeds) or lumped row sums.
+Eigen::MatrixXd hex8_mass(std::span<const Vec3> x, double density, MassKind kind = MassKind::Consistent);
+
+/// Tet10 stiffness (30 x 30) with the 4-point rule (degree 2: exact for straight-edged tets, the
+/// rule CalculiX uses for C3D10). Throws InputError for a non-positive Jacobian.
+Eigen::MatrixXd tet10_stiffness(std::span<const Vec3> x, const ElasticMaterial& m);
+
+/// Quadrature rule for the tet10 consistent mass: N^T N is of degree 4.
+enum class Tet10MassRule {
+    Exact,      // conical-product rule exact to degree 7 (64 points): the true consistent mass
+    FourPoint,  // the stiffness rule (degree 2), as some codes use: slightly underintegrated
+};
+
+/// Tet10 mass (30 x 30): consistent (rule above) or HRZ-lumped (positive masses: on a straight-edged
+/// tet each corner node gets 1/36 and each mid-edge node 4/27 of the element mass).
+Eigen::MatrixXd tet10_mass(std::span<const Vec3> x, double density, MassKind kind = MassKind::Consistent,
+                           Tet10MassRule rule = Tet10MassRule::Exact);
+
+/// Volumes by the element's own mapping (for mass checks).
+double hex8_volume(std::span<const Vec3> x);
+double tet10_volume(std::span<const Vec3> x);
+
+}  // namespace fem::solid

@@ -1,0 +1,99 @@
+#pragma once
+// The element interface of the explicit solver and the nodal state it acts on.
+//
+// An ElementGroup is one block of the mesh with one formulation and one material (LS-DYNA's
+// *PART + *SECTION + *MAT). The solver only talks to this interface, so shells and tetrahedra join
+// later by adding a group class: lumped mass, internal forces (with energies), the stable time
+// step, and stresses for output.
+//
+// Nodal state: every node has translational DOFs. Nodes used by a group that needs rotations
+// (beams; later shells) also get rotational DOFs: NodalState::rot_index[node] >= 0 then indexes
+// the arrays of angular velocity, moment, rotational inertia and the nodal rotation matrix. Solid-
+// only models carry no rotational storage.
+#include <limits>
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "core/types.hpp"
+#include "mesh/mesh.hpp"
+
+namespace fem {
+
+struct NodalState {
+    std::vector<Vec3> X;      // reference coordinates
+    std::vector<Vec3> x;      // current coordinates (time n)
+    std::vector<Vec3> v;      // velocities (time n - 1/2 during the force evaluation)
+    std::vector<Vec3> f;      // internal (resisting) forces being accumulated
+    std::vector<double> mass; // lumped translational mass
+    // Rotational DOFs, only for nodes that need them.
+    std::vector<int> rot_index;        // per node: -1, or the index into the arrays below
+    std::vector<int> rot_node;         // per rotational slot: its node
+    std::vector<Vec3> omega;           // angular velocity (global frame)
+    std::vector<Vec3> moment;          // internal (resisting) moments being accumulated
+    std::vector<double> inertia;       // isotropic lumped rotational inertia
+    std::vector<Mat3> rotation;        // nodal triad relative to the reference
+    int node_count() const { return static_cast<int>(x.size()); }
+    int rotational_count() const { return static_cast<int>(rot_node.size()); }
+};
+
+/// What one internal-force pass of a group returns (energies are totals over the group).
+struct GroupForceResult {
+    double internal_energy = 0.0;    // stored elastic energy (hyperelastic: exact state function)
+    double hourglass_energy = 0.0;   // stored hourglass energy
+    double viscous_power = 0.0;      // bulk viscosity + stiffness damping dissipation rate [W]
+    double dt_min = std::numeric_limits<double>::infinity();  // smallest critical step (unscaled by 0.9)
+    int dt_element = -1;             // element that has it (index within the block)
+    int bad_element = -1;            // first inverted / non-finite element, -1 when all fine
+    double max_von_mises = 0.0;      // over the group (beams: outer-fibre stress)
+};
+
+class ElementGroup {
+public:
+    virtual ~ElementGroup() = default;
+    /// "hex8", "beam", "point mass": for messages and the summary.
+    virtual std::string kind() const = 0;
+    virtual int size() const = 0;
+    /// True when the group's nodes need rotational DOFs.
+    virtual bool needs_rotations() const { return false; }
+    /// Nodes the group touches (for allocating rotational DOFs).
+    virtual std::vector<int> nodes() const = 0;
+    /// Adds the group's lumped mass (and rotational inertia) to the state; returns the mass added
+    /// by selective mass scaling (already included).
+    virtual double add_lumped_mass(NodalState& s) const = 0;
+    /// Physical mass of the group (without mass scaling).
+    virtual double mass() const = 0;
+    /// Critical steps of every element on the reference geometry (for mass scaling at start).
+    virtual std::vector<double> reference_time_steps() const = 0;
+    /// Multiplies element e's density by factor[e] (selective mass scaling, Sec 2.3.5 obs. 4).
+    virtual void set_mass_scaling(std::vector<double> factor) = 0;
+    /// Adds internal forces (and moments) at state.x / state.v to state.f (state.moment). When
+    /// compute_dt, also evaluates every element's critical step on the current coordinates.
+    /// Deterministic for any number of threads.
+    virtual GroupForceResult internal_forces(NodalState& s, bool compute_dt) = 0;
+    /// Per-element von Mises stress (beams: outer-fibre stress) at the last force evaluation.
+    virtual std::vector<double> element_stress() const = 0;
+
+    std::string part;      // part name (from the block)
+    int block = -1;        // block index in the mesh
+};
+
+/// State-dependent forces from outside the element groups (contact, couplings): the solver calls
+/// add_forces every cycle after the internal forces and counts their work as the "contact" energy
+/// of the balance (energy taken out of the structure: penalty springs + friction). Implementations
+/// must be deterministic (fixed summation order).
+class ForceProvider {
+public:
+    virtual ~ForceProvider() = default;
+    virtual std::string name() const = 0;
+    /// Called once before the first cycle (masses are set).
+    virtual void initialize(const NodalState& s) {}
+    /// Adds forces (per node) and moments (per rotational slot, s.rot_index) acting ON the structure
+    /// at time t, state x(n), v(n-1/2).
+    virtual void add_forces(double t, const NodalState& s, std::vector<Vec3>& force, std::vector<Vec3>& moment) = 0;
+    /// A limit on the step (e.g. penalty springs); infinity when it imposes none.
+    virtual double stable_time_step(const NodalState& s) const { return std::numeric_limits<double>::infinity(); }
+};
+
+}  // namespace fem

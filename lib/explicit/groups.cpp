@@ -1,0 +1,323 @@
+#include "explicit/groups.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <fmt/format.h>
+
+#include "core/error.hpp"
+#include "element/critical_time_step.hpp"
+#include "explicit/parallel.hpp"
+
+namespace fem {
+
+// --- Hex8Group ---------------------------------------------------------------------------------------
+
+Hex8Group::Hex8Group(const Mesh& mesh, int block, const ElasticMaterial& material, const Hex8Options& options)
+    : material_(material),
+      kernel_material_(hex8::Hex8Material::from(material, options.hourglass_qm, options.rayleigh_beta,
+                                                options.bulk, options.bulk_viscosity)) {
+    const ElementBlock& b = mesh.blocks.at(block);
+    if (b.shape != ElementShape::Hex8)
+        throw InputError(fmt::format("part '{}' (block {}) is {}, not hex8", b.part, block, to_string(b.shape)));
+    if (options.hourglass_qm < 0 || options.rayleigh_beta < 0)
+        throw InputError(fmt::format("part '{}': hourglass QM and Rayleigh beta must not be negative", b.part));
+    part = b.part;
+    this->block = block;
+    const int n = b.size();
+    conn_.resize(n);
+    refs_.reserve(n);
+    for (int e = 0; e < n; ++e) {
+        std::array<Vec3, 8> X;
+        for (int a = 0; a < 8; ++a) {
+            conn_[e][a] = b.element(e)[a];
+            X[a] = mesh.nodes.at(conn_[e][a]);
+        }
+        const std::string name = fmt::format("part '{}' block {} hex8 element {}", part, block, e);
+        refs_.push_back(hex8::make_reference(X, name.c_str()));
+        ref_dt_.push_back(cfl::critical_time_step(ElementShape::Hex8, X, material_));
+    }
+    mass_scale_.assign(n, 1.0);
+    von_mises_.assign(n, 0.0);
+    dt_.assign(n, std::numeric_limits<double>::infinity());
+    fe_.resize(static_cast<std::size_t>(n) * 8);
+    // CSR node -> element slots, slots in increasing order (fixed summation order).
+    std::vector<int> count(mesh.node_count(), 0);
+    for (const auto& c : conn_)
+        for (int a : c) ++count[a];
+    std::vector<int> first(mesh.node_count(), -1);
+    node_offset_.push_back(0);
+    for (int i = 0; i < mesh.node_count(); ++i)
+        if (count[i] > 0) {
+            first[i] = static_cast<int>(nodes_.size());
+            nodes_.push_back(i);
+            node_offset_.push_back(node_offset_.back() + count[i]);
+        }
+    node_slot_.resize(node_offset_.back());
+    std::vector<int> fill(nodes_.size(), 0);
+    for (int e = 0; e < n; ++e)
+        for (int a = 0; a < 8; ++a) {
+            const int k = first[conn_[e][a]];
+            node_slot_[node_offset_[k] + fill[k]++] = e * 8 + a;
+        }
+}
+
+double Hex8Group::add_lumped_mass(NodalState& s) const {
+    // Row-sum lumping of the one-point element: rho V0 / 8 per node (Eq 2-23 in 3D).
+    double added = 0.0;
+    for (int e = 0; e < size(); ++e) {
+        const double m = material_.density * refs_[e].volume;
+        for (int a : conn_[e]) s.mass[a] += mass_scale_[e] * m / 8.0;
+        added += (mass_scale_[e] - 1.0) * m;
+    }
+    return added;
+}
+
+double Hex8Group::mass() const {
+    double m = 0.0;
+    for (const auto& r : refs_) m += material_.density * r.volume;
+    return m;
+}
+
+std::vector<double> Hex8Group::reference_time_steps() const {
+    return ref_dt_;  // Table 2-1 on the undeformed element, unscaled
+}
+
+void Hex8Group::set_mass_scaling(std::vector<double> factor) {
+    if (static_cast<int>(factor.size()) != size()) throw InputError("mass scaling: one factor per element needed");
+    mass_scale_ = std::move(factor);
+}
+
+GroupForceResult Hex8Group::internal_forces(NodalState& s, bool compute_dt) {
+    const int n = size();
+    struct Partial {
+        double ie = 0, hg = 0, visc = 0, vm = 0, dt = std::numeric_limits<double>::infinity();
+        int dt_e = -1, bad = -1;
+    };
+    const int chunks = par::chunk_count(n);
+    std::vector<Partial> part_res(chunks);
+    const double beta = kernel_material_.rayleigh_beta;
+#pragma omp parallel for schedule(static) if (n >= par::kParallelMin)
+    for (int c = 0; c < chunks; ++c) {
+        Partial p;
+        hex8::Hex8Result r;
+        std::array<Vec3, 8> x, u, v;
+        const auto [e0, e1] = par::chunk_range(c, n);
+        for (int e = e0; e < e1; ++e) {
+            const auto& cn = conn_[e];
+            for (int a = 0; a < 8; ++a) {
+                x[a] = s.x[cn[a]];
+                u[a] = x[a] - s.X[cn[a]];
+                v[a] = s.v[cn[a]];
+            }
+            hex8::internal_force(refs_[e], kernel_material_, u, v, 0.0, r);
+            Vec3* fe = &fe_[static_cast<std::size_t>(e) * 8];
+            if (r.inverted || !std::isfinite(r.strain_energy)) {
+                if (p.bad < 0) p.bad = e;
+                for (int a = 0; a < 8; ++a) fe[a].setZero();
+                continue;
+            }
+            for (int a = 0; a < 8; ++a) fe[a] = r.force[a];
+            p.ie += r.strain_energy;
+            p.hg += r.hourglass_energy;
+            p.visc += r.viscous_power;
+            von_mises_[e] = r.von_mises;
+            p.vm = std::max(p.vm, r.von_mises);
+            if (compute_dt) {
+                // Table 2-1 hexahedron on the current coordinates, with the bulk-viscosity Q term.
+                double dt = cfl::critical_time_step(ElementShape::Hex8, x, material_,
+                                                    kernel_material_.bulk_viscosity ? r.volumetric_strain_rate : 0.0,
+                                                    kernel_material_.bulk);
+                dt *= std::sqrt(mass_scale_[e]);  // dt ~ sqrt(rho)
+                if (beta > 0.0) {
+                    // Stiffness damping lowers the limit: dt <= (2/omega)(sqrt(1 + xi^2) - xi), xi = beta omega/2.
+                    const double xi = beta / dt;
+                    dt *= std::sqrt(1.0 + xi * xi) - xi;
+                }
+                dt_[e] = dt;
+                if (dt < p.dt) {
+                    p.dt = dt;
+                    p.dt_e = e;
+                }
+            }
+        }
+        part_res[c] = p;
+    }
+    // Gather: each node sums its element slots in a fixed order.
+    const int nn = static_cast<int>(nodes_.size());
+#pragma omp parallel for schedule(static) if (n >= par::kParallelMin)
+    for (int k = 0; k < nn; ++k) {
+        Vec3 sum = Vec3::Zero();
+        for (int j = node_offset_[k]; j < node_offset_[k + 1]; ++j) sum += fe_[node_slot_[j]];
+        s.f[nodes_[k]] += sum;
+    }
+    GroupForceResult out;
+    for (const auto& p : part_res) {  // fixed order
+        out.internal_energy += p.ie;
+        out.hourglass_energy += p.hg;
+        out.viscous_power += p.visc;
+        out.max_von_mises = std::max(out.max_von_mises, p.vm);
+        if (p.bad >= 0 && out.bad_element < 0) out.bad_element = p.bad;
+        if (p.dt < out.dt_min) {
+            out.dt_min = p.dt;
+            out.dt_element = p.dt_e;
+        }
+    }
+    if (!compute_dt) {
+        out.dt_min = std::numeric_limits<double>::quiet_NaN();
+    }
+    return out;
+}
+
+// --- BeamGroup ---------------------------------------------------------------------------------------
+
+BeamGroup::BeamGroup(const Mesh& mesh, int block, const ElasticMaterial& material, const BeamOptions& options)
+    : material_(material), options_(options) {
+    const ElementBlock& b = mesh.blocks.at(block);
+    if (b.shape != ElementShape::Beam2)
+        throw InputError(fmt::format("part '{}' (block {}) is {}, not beam2", b.part, block, to_string(b.shape)));
+    part = b.part;
+    this->block = block;
+    options_.section.validate(fmt::format("part '{}'", part).c_str());
+    const int n = b.size();
+    for (int e = 0; e < n; ++e) {
+        std::array<int, 2> c{b.element(e)[0], b.element(e)[1]};
+        conn_.push_back(c);
+        try {
+            refs_.push_back(beam::make_reference(mesh.nodes.at(c[0]), mesh.nodes.at(c[1]), options_.orientation));
+        } catch (const InputError& err) {
+            throw InputError(fmt::format("part '{}' block {} beam element {}: {}", part, block, e, err.what()));
+        }
+    }
+    mass_scale_.assign(n, 1.0);
+    stress_.assign(n, 0.0);
+    wave_speed_ = bar_wave_speed(material_);
+    for (const auto& r : refs_)
+        transverse_dt_.push_back(beam::transverse_time_step(
+            options_.section, material_, r.length, beam::nodal_rotational_inertia(options_.section, material_, r.length)));
+}
+
+std::vector<int> BeamGroup::nodes() const {
+    std::vector<int> v;
+    for (const auto& c : conn_) v.insert(v.end(), c.begin(), c.end());
+    std::sort(v.begin(), v.end());
+    v.erase(std::unique(v.begin(), v.end()), v.end());
+    return v;
+}
+
+double BeamGroup::add_lumped_mass(NodalState& s) const {
+    double added = 0.0;
+    for (int e = 0; e < size(); ++e) {
+        const double L = refs_[e].length;
+        const double m = material_.density * options_.section.area * L;
+        const double J = beam::nodal_rotational_inertia(options_.section, material_, L);
+        for (int a : conn_[e]) {
+            s.mass[a] += mass_scale_[e] * m / 2.0;
+            s.inertia[s.rot_index[a]] += mass_scale_[e] * J;
+        }
+        added += (mass_scale_[e] - 1.0) * m;
+    }
+    return added;
+}
+
+double BeamGroup::mass() const {
+    double m = 0.0;
+    for (const auto& r : refs_) m += material_.density * options_.section.area * r.length;
+    return m;
+}
+
+double BeamGroup::rotational_inertia_scaling(int e) const {
+    const double L = refs_.at(e).length;
+    return beam::nodal_rotational_inertia(options_.section, material_, L) /
+           beam::physical_rotational_inertia(options_.section, material_, L);
+}
+
+std::vector<double> BeamGroup::reference_time_steps() const {
+    std::vector<double> dt;
+    for (const auto& r : refs_)
+        dt.push_back(beam::critical_time_step(options_.section, material_, Vec3::Zero(), r.length * r.frame0.col(0)));
+    return dt;
+}
+
+void BeamGroup::set_mass_scaling(std::vector<double> factor) {
+    if (static_cast<int>(factor.size()) != size()) throw InputError("mass scaling: one factor per element needed");
+    mass_scale_ = std::move(factor);
+}
+
+GroupForceResult BeamGroup::internal_forces(NodalState& s, bool compute_dt) {
+    GroupForceResult out;
+    beam::Result r;
+    for (int e = 0; e < size(); ++e) {  // few elements: serial, fixed order
+        const int a = conn_[e][0], b = conn_[e][1];
+        const int ra = s.rot_index[a], rb = s.rot_index[b];
+        const Vec3 d = s.x[b] - s.x[a];
+        if (!(d.squaredNorm() > 0.0) || !std::isfinite(d.squaredNorm())) {
+            if (out.bad_element < 0) out.bad_element = e;
+            continue;
+        }
+        beam::internal_force(refs_[e], options_.section, material_, s.x[a], s.x[b], s.rotation[ra],
+                             s.rotation[rb], r);
+        s.f[a] += r.force[0];
+        s.f[b] += r.force[1];
+        s.moment[ra] += r.moment[0];
+        s.moment[rb] += r.moment[1];
+        out.internal_energy += r.strain_energy;
+        stress_[e] = r.max_stress;
+        out.max_von_mises = std::max(out.max_von_mises, r.max_stress);
+        if (compute_dt) {
+            // Table 2-1 beam row, L/c on the current length (fem::cfl::time_step), or the cached
+            // transverse bound of a stubby element (see beam_corotational.hpp).
+            const double dt = std::min(cfl::time_step(std::sqrt(d.squaredNorm()), wave_speed_), transverse_dt_[e]) *
+                              std::sqrt(mass_scale_[e]);
+            if (dt < out.dt_min) {
+                out.dt_min = dt;
+                out.dt_element = e;
+            }
+        }
+    }
+    if (!compute_dt) out.dt_min = std::numeric_limits<double>::quiet_NaN();
+    return out;
+}
+
+// --- PointMassGroup ----------------------------------------------------------------------------------
+
+PointMassGroup::PointMassGroup(std::string part_name, std::vector<int> nodes, std::vector<double> masses,
+                               std::vector<double> rotational_inertia)
+    : nodes_(std::move(nodes)), masses_(std::move(masses)), inertia_(std::move(rotational_inertia)) {
+    part = std::move(part_name);
+    if (masses_.size() == 1 && nodes_.size() > 1) masses_.assign(nodes_.size(), masses_[0]);
+    if (inertia_.size() == 1 && nodes_.size() > 1) inertia_.assign(nodes_.size(), inertia_[0]);
+    if (masses_.size() != nodes_.size())
+        throw InputError(fmt::format("point masses of part '{}': {} nodes but {} masses", part, nodes_.size(),
+                                     masses_.size()));
+    if (!inertia_.empty() && inertia_.size() != nodes_.size())
+        throw InputError(fmt::format("point masses of part '{}': {} nodes but {} rotational inertias", part,
+                                     nodes_.size(), inertia_.size()));
+    for (std::size_t i = 0; i < masses_.size(); ++i)
+        if (!(masses_[i] > 0.0) || (!inertia_.empty() && inertia_[i] < 0.0))
+            throw InputError(fmt::format("point mass {} of part '{}' on node {}: mass {:.4g} must be positive and "
+                                         "inertia not negative",
+                                         i, part, nodes_[i], masses_[i]));
+    for (double j : inertia_) has_rotation_ = has_rotation_ || j > 0.0;
+}
+
+double PointMassGroup::add_lumped_mass(NodalState& s) const {
+    for (std::size_t i = 0; i < nodes_.size(); ++i) {
+        s.mass.at(nodes_[i]) += masses_[i];
+        if (!inertia_.empty() && inertia_[i] > 0.0) s.inertia[s.rot_index[nodes_[i]]] += inertia_[i];
+    }
+    return 0.0;
+}
+
+double PointMassGroup::mass() const {
+    double m = 0.0;
+    for (double v : masses_) m += v;
+    return m;
+}
+
+std::vector<double> PointMassGroup::reference_time_steps() const {
+    return std::vector<double>(nodes_.size(), std::numeric_limits<double>::infinity());
+}
+
+}  // namespace fem

@@ -1,0 +1,882 @@
+#include "explicit/solver.hpp"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <limits>
+#include <set>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+#include <Spectra/SymEigsSolver.h>
+
+#include "core/error.hpp"
+#include "element/critical_time_step.hpp"
+#include "explicit/parallel.hpp"
+#include "io/hdf5.hpp"
+
+namespace fem {
+
+// ===================================================================================================
+// ExplicitModel
+// ===================================================================================================
+
+ExplicitModel::ExplicitModel(Mesh mesh) : mesh_(std::move(mesh)) {
+    validate(mesh_);
+    fixed_.assign(mesh_.node_count(), 0u);
+}
+
+void ExplicitModel::check_nodes(const std::vector<int>& nodes, const char* what) const {
+    if (nodes.empty()) throw InputError(fmt::format("{}: empty node list", what));
+    for (int n : nodes)
+        if (n < 0 || n >= mesh_.node_count())
+            throw InputError(fmt::format("{}: node {} out of range (the mesh has {} nodes)", what, n,
+                                         mesh_.node_count()));
+}
+
+void ExplicitModel::add_hex8(std::string_view part, const ElasticMaterial& material, const Hex8Options& options) {
+    for (int b : mesh_.blocks_of_part(part)) groups_.push_back(std::make_unique<Hex8Group>(mesh_, b, material, options));
+}
+
+void ExplicitModel::add_beams(std::string_view part, const ElasticMaterial& material, const BeamOptions& options) {
+    for (int b : mesh_.blocks_of_part(part)) groups_.push_back(std::make_unique<BeamGroup>(mesh_, b, material, options));
+}
+
+void ExplicitModel::add_point_mass(const std::string& part, int node, double mass, double rotational_inertia) {
+    check_nodes({node}, fmt::format("point mass of part '{}'", part).c_str());
+    if (finalized_) throw InputError("add_point_mass after the solver was created");
+    auto& d = point_data_[part];
+    d.first.push_back(node);
+    d.second.first.push_back(mass);
+    d.second.second.push_back(rotational_inertia);
+}
+
+void ExplicitModel::add_point_masses(std::string_view part, double mass_each, double rot_each) {
+    for (int b : mesh_.blocks_of_part(part)) {
+        const auto& blk = mesh_.blocks[b];
+        if (blk.shape != ElementShape::Point1)
+            throw InputError(fmt::format("add_point_masses: part '{}' block {} is {}, not point1", part, b,
+                                         to_string(blk.shape)));
+        for (int e = 0; e < blk.size(); ++e) add_point_mass(std::string(part), blk.element(e)[0], mass_each, rot_each);
+    }
+}
+
+void ExplicitModel::add_group(std::unique_ptr<ElementGroup> group) { groups_.push_back(std::move(group)); }
+
+void ExplicitModel::finalize() {
+    if (finalized_) return;
+    finalized_ = true;
+    for (auto& [part, d] : point_data_) {
+        bool rot = false;
+        for (double j : d.second.second) rot = rot || j > 0;
+        groups_.push_back(std::make_unique<PointMassGroup>(part, d.first, d.second.first,
+                                                           rot ? d.second.second : std::vector<double>{}));
+    }
+    if (groups_.empty()) throw InputError("explicit model has no parts: add hex8, beams or point masses");
+}
+
+void ExplicitModel::fix(const std::vector<int>& nodes, Dofs dofs) {
+    check_nodes(nodes, "fix");
+    for (int n : nodes) fixed_[n] |= dofs.mask;
+}
+
+void ExplicitModel::prescribe_velocity(const std::vector<int>& nodes, int dof, double value, Curve curve) {
+    check_nodes(nodes, "prescribe_velocity");
+    if (dof < 0 || dof > 2) throw InputError(fmt::format("prescribe_velocity: dof {} (only 0, 1, 2: x, y, z)", dof));
+    prescribed_.push_back({nodes, dof, value, std::move(curve), false});
+}
+
+void ExplicitModel::prescribe_displacement(const std::vector<int>& nodes, int dof, double value, Curve curve) {
+    check_nodes(nodes, "prescribe_displacement");
+    if (dof < 0 || dof > 2)
+        throw InputError(fmt::format("prescribe_displacement: dof {} (only 0, 1, 2: x, y, z)", dof));
+    prescribed_.push_back({nodes, dof, value, std::move(curve), true});
+}
+
+void ExplicitModel::prescribe_motion(const std::vector<int>& nodes,
+                                     std::function<Vec3(const Vec3& X, double t)> position) {
+    check_nodes(nodes, "prescribe_motion");
+    if (!position) throw InputError("prescribe_motion: empty position function");
+    motions_.push_back({nodes, std::move(position)});
+}
+
+ForceProvider& ExplicitModel::add_force_provider(std::unique_ptr<ForceProvider> provider) {
+    if (!provider) throw InputError("add_force_provider: null provider");
+    providers_.push_back(std::move(provider));
+    return *providers_.back();
+}
+
+void ExplicitModel::add_nodal_force(const std::vector<int>& nodes, const Vec3& force, Curve curve) {
+    check_nodes(nodes, "add_nodal_force");
+    loads_.push_back({nodes, force, std::move(curve), false});
+}
+
+void ExplicitModel::add_nodal_moment(const std::vector<int>& nodes, const Vec3& moment, Curve curve) {
+    check_nodes(nodes, "add_nodal_moment");
+    loads_.push_back({nodes, moment, std::move(curve), true});
+}
+
+void ExplicitModel::set_gravity(const Vec3& g, double t_on) {
+    gravity_ = g;
+    gravity_on_ = t_on;
+}
+
+void ExplicitModel::set_mass_damping(std::string_view part, double alpha) {
+    if (!(alpha >= 0.0)) throw InputError(fmt::format("mass damping of part '{}': alpha = {} must be >= 0", part, alpha));
+    damping_[std::string(part)] = alpha;
+}
+
+void ExplicitModel::set_mass_damping(double alpha) {
+    if (!(alpha >= 0.0)) throw InputError(fmt::format("mass damping: alpha = {} must be >= 0", alpha));
+    global_alpha_ = alpha;
+}
+
+void ExplicitModel::set_initial_velocity(const std::vector<int>& nodes, const Vec3& v) {
+    check_nodes(nodes, "set_initial_velocity");
+    if (v0_.empty()) v0_.assign(mesh_.node_count(), Vec3::Zero());
+    for (int n : nodes) v0_[n] = v;
+}
+
+void ExplicitModel::set_initial_velocity(const std::function<Vec3(const Vec3&)>& f) {
+    v0_.resize(mesh_.node_count());
+    for (int n = 0; n < mesh_.node_count(); ++n) v0_[n] = f(mesh_.nodes[n]);
+}
+
+void ExplicitModel::set_initial_angular_velocity(const std::vector<int>& nodes, const Vec3& w) {
+    check_nodes(nodes, "set_initial_angular_velocity");
+    for (int n : nodes) w0_[n] = w;
+}
+
+// ===================================================================================================
+// RunSummary
+// ===================================================================================================
+
+std::string RunSummary::text() const {
+    std::string s;
+    s += fmt::format("==== explicit run '{}' summary ====\n", name);
+    s += fmt::format("  nodes {} ({} with rotations), elements {}, threads {}\n", nodes, rotational_nodes, elements,
+                     threads);
+    s += fmt::format("  mass {:.6g} kg, added by mass scaling {:.4g} kg ({:.3g} %)\n", mass, added_mass,
+                     100.0 * added_mass_fraction);
+    s += fmt::format("  controlling element: part '{}' block {} {} element {}, critical dt {:.4g} s (Table 2-1)\n",
+                     controlling_part, controlling_block, controlling_kind, controlling_element, controlling_dt);
+    if (stability_factor < 1.0)
+        s += fmt::format("  measured stability limit of the hexahedra: 2/omega_max = {:.4f} x Table 2-1 (steps scaled)\n",
+                         stability_factor);
+    s += fmt::format("  time step: first {:.4g} s, min {:.4g} s, max {:.4g} s; {} steps to t = {:.6g} s\n", first_dt,
+                     min_dt, max_dt, steps, end_time);
+    s += fmt::format("  energies [J]: kinetic {:.6g}, internal {:.6g}, hourglass {:.6g}, damping {:.6g}, "
+                     "viscous {:.6g}, contact {:.6g}, external work {:.6g}, initial {:.6g}\n",
+                     energy.kinetic, energy.internal, energy.hourglass, energy.damping, energy.viscous,
+                     energy.contact, energy.external, energy.initial);
+    s += fmt::format("  energy balance error: final {:.3g} J, max |error| {:.3g} J = {:.3g} of {:.4g} J\n",
+                     energy.balance_error, energy.max_abs_balance_error, energy.relative_error(), energy.reference);
+    s += fmt::format("  wall time {:.3f} s, {:.4g} element-cycles/s\n", wall_s, element_cycles_per_s);
+    return s;
+}
+
+nlohmann::json RunSummary::to_json() const {
+    return {{"name", name},
+            {"nodes", nodes},
+            {"rotational_nodes", rotational_nodes},
+            {"elements", elements},
+            {"threads", threads},
+            {"steps", steps},
+            {"end_time_s", end_time},
+            {"first_dt_s", first_dt},
+            {"min_dt_s", min_dt},
+            {"max_dt_s", max_dt},
+            {"controlling_element",
+             fmt::format("part '{}' block {} {} element {}", controlling_part, controlling_block, controlling_kind,
+                         controlling_element)},
+            {"controlling_dt_s", controlling_dt},
+            {"stability_factor", stability_factor},
+            {"mass_kg", mass},
+            {"added_mass_kg", added_mass},
+            {"added_mass_fraction", added_mass_fraction},
+            {"energy_kinetic_J", energy.kinetic},
+            {"energy_internal_J", energy.internal},
+            {"energy_hourglass_J", energy.hourglass},
+            {"energy_damping_J", energy.damping},
+            {"energy_viscous_J", energy.viscous},
+            {"external_work_J", energy.external},
+            {"energy_contact_J", energy.contact},
+            {"energy_balance_relative_error", energy.relative_error()},
+            {"wall_s", wall_s},
+            {"element_cycles_per_s", element_cycles_per_s}};
+}
+
+// ===================================================================================================
+// ExplicitSolver
+// ===================================================================================================
+
+ExplicitSolver::ExplicitSolver(ExplicitModel& model, ExplicitOptions options)
+    : model_(model), opt_(std::move(options)) {
+    if (!(opt_.end_time > 0.0)) throw InputError(fmt::format("explicit run '{}': end_time must be > 0", opt_.name));
+    if (!(opt_.dt_scale > 0.0 && opt_.dt_scale <= 1.0))
+        throw InputError(fmt::format("explicit run '{}': dt_scale {} must be in (0, 1]", opt_.name, opt_.dt_scale));
+    if (opt_.dt_interval < 1) throw InputError("dt_interval must be >= 1");
+    if (opt_.fixed_dt < 0 || opt_.mass_scaling_dt < 0 || opt_.history_interval < 0 || opt_.vtu_interval < 0)
+        throw InputError(fmt::format("explicit run '{}': negative fixed_dt, mass_scaling_dt or interval", opt_.name));
+    initialize();
+}
+
+ExplicitSolver::~ExplicitSolver() = default;
+
+std::string ExplicitSolver::element_name(int g, int e) const {
+    if (g < 0) return "no element";
+    const auto& grp = *model_.groups()[g];
+    return fmt::format("part '{}' block {} {} element {}", grp.part, grp.block, grp.kind(), e);
+}
+
+void ExplicitSolver::initialize() {
+    model_.finalize();
+    const Mesh& mesh = model_.mesh();
+    const int n = mesh.node_count();
+    auto& groups = model_.groups();
+    s_.X = mesh.nodes;
+    s_.x = mesh.nodes;
+    s_.v = model_.initial_velocity().empty() ? std::vector<Vec3>(n, Vec3::Zero()) : model_.initial_velocity();
+    s_.f.assign(n, Vec3::Zero());
+    s_.mass.assign(n, 0.0);
+    s_.rot_index.assign(n, -1);
+    for (const auto& g : groups)
+        if (g->needs_rotations())
+            for (int node : g->nodes())
+                if (s_.rot_index[node] < 0) {
+                    s_.rot_index[node] = static_cast<int>(s_.rot_node.size());
+                    s_.rot_node.push_back(node);
+                }
+    const int nr = s_.rotational_count();
+    s_.omega.assign(nr, Vec3::Zero());
+    s_.moment.assign(nr, Vec3::Zero());
+    s_.inertia.assign(nr, 0.0);
+    s_.rotation.assign(nr, Mat3::Identity());
+    for (const auto& [node, w] : model_.initial_angular_velocity()) {
+        if (s_.rot_index[node] < 0)
+            throw InputError(fmt::format("initial angular velocity on node {}, which has no rotations (no beam)", node));
+        s_.omega[s_.rot_index[node]] = w;
+    }
+
+    // Selective mass scaling (Sec 2.3.5, observation 4): raise every element's critical step to
+    // mass_scaling_dt / dt_scale by scaling its density with (dt_target / dt_e)^2.
+    summary_ = RunSummary{};
+    summary_.name = opt_.name;
+    if (opt_.mass_scaling_dt > 0.0) {
+        const double target = opt_.mass_scaling_dt / opt_.dt_scale;
+        for (auto& g : groups) {
+            std::vector<double> f;
+            for (double dt : g->reference_time_steps())
+                f.push_back(std::isfinite(dt) ? cfl::density_scale_for_time_step(dt, target) : 1.0);
+            g->set_mass_scaling(std::move(f));
+        }
+    }
+    for (const auto& g : groups) {
+        summary_.added_mass += g->add_lumped_mass(s_);
+        summary_.mass += g->mass();
+        summary_.elements += g->size();
+    }
+    summary_.added_mass_fraction = summary_.mass > 0 ? summary_.added_mass / summary_.mass : 0.0;
+    summary_.nodes = n;
+    summary_.rotational_nodes = nr;
+    for (int k = 0; k < nr; ++k)
+        if (!(s_.inertia[k] > 0.0))
+            throw InputError(fmt::format("node {} has rotations but no rotational inertia", s_.rot_node[k]));
+
+    // Damping per node: the largest alpha of the parts the node belongs to.
+    alpha_.assign(n, model_.global_mass_damping());
+    for (const auto& [part, a] : model_.mass_damping()) {
+        bool found = false;
+        for (const auto& g : groups)
+            if (g->part == part) {
+                found = true;
+                for (int node : g->nodes()) alpha_[node] = std::max(alpha_[node], a);
+            }
+        if (!found) throw InputError(fmt::format("mass damping given for part '{}', which the model does not have", part));
+    }
+    alpha_rot_.resize(nr);
+    for (int k = 0; k < nr; ++k) alpha_rot_[k] = alpha_[s_.rot_node[k]];
+
+    // Constraints.
+    fixed_ = model_.fixed();
+    target_index_.assign(n, -1);
+    for (const auto& p : model_.prescribed())
+        for (int node : p.nodes)
+            if (target_index_[node] < 0) {
+                target_index_[node] = static_cast<int>(target_.size());
+                const double nan = std::numeric_limits<double>::quiet_NaN();
+                target_.push_back({nan, nan, nan});
+            }
+    for (const auto& mo : model_.motions())
+        for (int node : mo.nodes)
+            if (target_index_[node] < 0) {
+                target_index_[node] = static_cast<int>(target_.size());
+                const double nan = std::numeric_limits<double>::quiet_NaN();
+                target_.push_back({nan, nan, nan});
+            }
+    for (const auto& l : model_.loads()) {
+        has_loads_ = true;
+        if (l.moment)
+            for (int node : l.nodes)
+                if (s_.rot_index[node] < 0)
+                    throw InputError(fmt::format("nodal moment on node {}, which has no rotations (no beam)", node));
+    }
+    if (model_.gravity().squaredNorm() > 0) has_loads_ = true;
+    fext_.assign(n, Vec3::Zero());
+    mext_.assign(nr, Vec3::Zero());
+    if (!model_.force_providers().empty()) {
+        fprov_.assign(n, Vec3::Zero());
+        mprov_.assign(nr, Vec3::Zero());
+        for (auto& p : model_.force_providers()) p->initialize(s_);
+    }
+    for (int i = 0; i < n; ++i) {
+        for (int d = 0; d < 3; ++d)
+            if ((fixed_[i] >> d) & 1u) s_.v[i][d] = 0.0;
+    }
+    for (int k = 0; k < nr; ++k)
+        for (int d = 0; d < 3; ++d)
+            if ((fixed_[s_.rot_node[k]] >> (d + 3)) & 1u) s_.omega[k][d] = 0.0;
+
+    // History set-up.
+    history_ = History{};
+    for (const auto& h : opt_.history_nodes) {
+        if (h.node < 0 || h.node >= n)
+            throw InputError(fmt::format("history node '{}': node {} out of range ({} nodes)", h.name, h.node, n));
+        history_.nodes.push_back({h.name, h.node, {}, {}});
+    }
+    if (!opt_.pvd_path.empty()) pvd_ = std::make_unique<io::PvdSeries>(opt_.pvd_path);
+
+    // Forces and critical step at t = 0.
+    t_ = 0.0;
+    step_ = 0;
+    compute_forces(true);
+    if (opt_.hex_stability_check) {
+        const double w = measure_hex_omega_max();
+        if (w > 0.0) stability_factor_ = std::min(1.0, (2.0 / w) / dt_crit_);
+        compute_forces(true);  // restore the forces of the initial state
+    }
+    summary_.stability_factor = stability_factor_;
+    if (opt_.fixed_dt > 0.0 && opt_.fixed_dt > stability_factor_ * dt_crit_ && !opt_.allow_unstable_fixed_dt)
+        throw InputError(fmt::format("explicit run '{}': the requested time step {:.4g} s is above the critical step "
+                                     "{:.4g} s of {} (Table 2-1); use at most {:.4g} s (0.9 x critical, Eq 2-27) or "
+                                     "mass scaling",
+                                     opt_.name, opt_.fixed_dt, stability_factor_ * dt_crit_,
+                                     element_name(dt_group_, dt_element_), opt_.dt_scale * stability_factor_ * dt_crit_));
+    summary_.controlling_dt = dt_crit_;
+    double ke0 = 0.0;
+    for (int i = 0; i < n; ++i) ke0 += 0.5 * s_.mass[i] * s_.v[i].squaredNorm();
+    for (int k = 0; k < nr; ++k) ke0 += 0.5 * s_.inertia[k] * s_.omega[k].squaredNorm();
+    e_kin_ = ke0;
+    e0_ = ke0 + e_int_ + e_hg_;
+    input_scale_ = std::abs(e0_);
+}
+
+namespace {
+// y = M^-1/2 K M^-1/2 x over the free translational DOFs of the hexahedra, K applied matrix-free as
+// the change of the internal forces for a tiny displacement from the reference state (the
+// one-point hexahedron is linear there), so Lanczos finds omega_max^2.
+class HexStiffnessOp {
+public:
+    using Scalar = double;
+    HexStiffnessOp(NodalState& s, std::vector<Hex8Group*> groups, std::vector<std::pair<int, int>> dofs, double h)
+        : s_(s), groups_(std::move(groups)), dofs_(std::move(dofs)), h_(h) {}
+    int rows() const { return static_cast<int>(dofs_.size()); }
+    int cols() const { return rows(); }
+    void perform_op(const double* x, double* y) const {
+        double mx = 0.0;
+        for (int i = 0; i < rows(); ++i) mx = std::max(mx, std::abs(x[i]) / std::sqrt(s_.mass[dofs_[i].first]));
+        for (int i = 0; i < s_.node_count(); ++i) {
+            s_.x[i] = s_.X[i];
+            s_.f[i].setZero();
+        }
+        if (mx == 0.0) {
+            std::fill(y, y + rows(), 0.0);
+            return;
+        }
+        const double eps = 1e-7 * h_ / mx;  // largest nodal displacement 1e-7 element sizes
+        for (int i = 0; i < rows(); ++i) {
+            const auto [n, d] = dofs_[i];
+            s_.x[n][d] += eps * x[i] / std::sqrt(s_.mass[n]);
+        }
+        for (auto* g : groups_) g->internal_forces(s_, false);
+        for (int i = 0; i < rows(); ++i) {
+            const auto [n, d] = dofs_[i];
+            y[i] = s_.f[n][d] / (eps * std::sqrt(s_.mass[n]));
+        }
+    }
+
+private:
+    NodalState& s_;
+    std::vector<Hex8Group*> groups_;
+    std::vector<std::pair<int, int>> dofs_;
+    double h_;
+};
+}  // namespace
+
+double ExplicitSolver::measure_hex_omega_max() {
+    std::vector<Hex8Group*> hex;
+    for (auto& g : model_.groups())
+        if (auto* h = dynamic_cast<Hex8Group*>(g.get())) hex.push_back(h);
+    if (hex.empty()) return 0.0;
+    std::vector<char> used(s_.node_count(), 0);
+    double vmin = std::numeric_limits<double>::infinity();
+    for (auto* g : hex) {
+        for (int n : g->nodes()) used[n] = 1;
+        for (int e = 0; e < g->size(); ++e) vmin = std::min(vmin, g->reference(e).volume);
+    }
+    std::vector<std::pair<int, int>> dofs;
+    for (int n = 0; n < s_.node_count(); ++n)
+        if (used[n] && s_.mass[n] > 0.0)
+            for (int d = 0; d < 3; ++d)
+                if (!((fixed_[n] >> d) & 1u) && !(target_index_[n] >= 0)) dofs.push_back({n, d});
+    if (dofs.size() < 2) return 0.0;
+    NodalState tmp = s_;
+    for (auto& v : tmp.v) v.setZero();
+    HexStiffnessOp op(tmp, hex, dofs, std::cbrt(vmin));
+    const int n = static_cast<int>(dofs.size());
+    const int ncv = std::min(n, 40);
+    if (ncv <= 2) return 0.0;
+    Spectra::SymEigsSolver<HexStiffnessOp> eigs(op, 1, ncv);
+    eigs.init();
+    eigs.compute(Spectra::SortRule::LargestAlge, 500, 1e-4);
+    if (eigs.info() == Spectra::CompInfo::Successful && eigs.eigenvalues()[0] > 0.0)
+        return std::sqrt(eigs.eigenvalues()[0]);
+    // Not converged: the exact limit of a single free cube, the worst case, sqrt((3 lambda + 2 mu) / rho) 2/h.
+    double w = 0.0;
+    for (auto* g : hex) {
+        const auto& m = g->material();
+        for (int e = 0; e < g->size(); ++e)
+            w = std::max(w, 2.0 * std::sqrt((3.0 * m.lame_lambda() + 2.0 * m.shear_modulus()) / m.density) /
+                                std::cbrt(g->reference(e).volume));
+    }
+    return w;
+}
+
+void ExplicitSolver::compute_forces(bool compute_dt) {
+    const int n = s_.node_count();
+#pragma omp parallel for schedule(static) if (n >= par::kParallelMin)
+    for (int i = 0; i < n; ++i) s_.f[i].setZero();
+    for (auto& m : s_.moment) m.setZero();
+    e_int_ = e_hg_ = visc_power_ = 0.0;
+    double dt = std::numeric_limits<double>::infinity();
+    int dg = -1, de = -1;
+    auto& groups = model_.groups();
+    for (int g = 0; g < static_cast<int>(groups.size()); ++g) {
+        const GroupForceResult r = groups[g]->internal_forces(s_, compute_dt);
+        element_cycles_ += groups[g]->size();
+        if (r.bad_element >= 0)
+            unstable(fmt::format("{} is inverted or has a non-finite state", element_name(g, r.bad_element)));
+        e_int_ += r.internal_energy;
+        e_hg_ += r.hourglass_energy;
+        visc_power_ += r.viscous_power;
+        double& vm = max_vm_[groups[g]->part];
+        vm = std::max(vm, r.max_von_mises);
+        if (compute_dt && r.dt_min < dt) {
+            dt = r.dt_min;
+            dg = g;
+            de = r.dt_element;
+        }
+    }
+    if (compute_dt) {
+        if (!std::isfinite(dt))
+            throw InputError(fmt::format("explicit run '{}': no element limits the time step (only point masses?)",
+                                         opt_.name));
+        dt_crit_ = dt;
+        dt_group_ = dg;
+        dt_element_ = de;
+    }
+}
+
+void ExplicitSolver::external_forces(double t) {
+    if (!has_loads_) return;
+    for (auto& f : fext_) f.setZero();
+    for (auto& m : mext_) m.setZero();
+    for (const auto& l : model_.loads()) {
+        const Vec3 v = l.value * l.curve(t);
+        for (int node : l.nodes) {
+            if (l.moment)
+                mext_[s_.rot_index[node]] += v;
+            else
+                fext_[node] += v;
+        }
+    }
+    if (model_.gravity().squaredNorm() > 0 && t >= model_.gravity_on())
+        for (int i = 0; i < s_.node_count(); ++i) fext_[i] += s_.mass[i] * model_.gravity();
+}
+
+void ExplicitSolver::unstable(const std::string& why) {
+    // Locate the node with the largest kinetic energy: where a numerical instability grows fastest.
+    int worst = -1;
+    double ew = -1.0;
+    for (int i = 0; i < s_.node_count(); ++i) {
+        const double e = s_.mass[i] * s_.v[i].squaredNorm();
+        if (!std::isfinite(e)) {
+            worst = i;
+            break;
+        }
+        if (e > ew) {
+            ew = e;
+            worst = i;
+        }
+    }
+    const std::string where =
+        worst >= 0 ? fmt::format("node {} (reference position {:.4g}, {:.4g}, {:.4g})", worst, s_.X[worst].x(),
+                                 s_.X[worst].y(), s_.X[worst].z())
+                   : "no node";
+    throw SolverError(fmt::format(
+        "explicit run '{}' unstable at step {}, t = {:.6g} s: {}. Largest kinetic energy at {}; smallest critical step "
+        "{:.4g} s in {}; step used {:.4g} s",
+        opt_.name, step_, t_, why, where, dt_crit_, element_name(dt_group_, dt_element_),
+        opt_.fixed_dt > 0 ? opt_.fixed_dt : opt_.dt_scale * stability_factor_ * dt_crit_));
+}
+
+void ExplicitSolver::record(bool force) {
+    if (!force && t_ + 1e-12 * opt_.end_time < next_history_) return;
+    next_history_ = t_ + opt_.history_interval;
+    history_.time.push_back(t_);
+    for (auto& h : history_.nodes) {
+        h.displacement.push_back(s_.x[h.node] - s_.X[h.node]);
+        h.velocity.push_back(s_.v[h.node]);
+    }
+    const EnergySummary& e = summary_.energy;
+    history_.kinetic.push_back(e.kinetic);
+    history_.internal.push_back(e.internal);
+    history_.hourglass.push_back(e.hourglass);
+    history_.damping.push_back(e.damping);
+    history_.viscous.push_back(e.viscous);
+    history_.external.push_back(e.external);
+    history_.contact.push_back(e.contact);
+    history_.balance.push_back(e.balance_error);
+    for (auto& [part, vm] : max_vm_) {
+        history_.max_von_mises[part].push_back(vm);
+        vm = 0.0;
+    }
+    if (observer) observer(*this);
+}
+
+void ExplicitSolver::write_vtu(double t) {
+    if (!pvd_ || t_ + 1e-12 * opt_.end_time < next_vtu_) return;
+    next_vtu_ = t_ + opt_.vtu_interval;
+    io::VtuData data;
+    io::Field u{"displacement", 3, {}}, v{"velocity", 3, {}};
+    for (int i = 0; i < s_.node_count(); ++i)
+        for (int d = 0; d < 3; ++d) {
+            u.values.push_back(s_.x[i][d] - s_.X[i][d]);
+            v.values.push_back(s_.v[i][d]);
+        }
+    data.point_fields = {std::move(u), std::move(v)};
+    // One stress per element, in block order (blocks without a group: zero).
+    const Mesh& mesh = model_.mesh();
+    std::vector<std::vector<double>> per_block(mesh.blocks.size());
+    for (std::size_t b = 0; b < mesh.blocks.size(); ++b) per_block[b].assign(mesh.blocks[b].size(), 0.0);
+    for (const auto& g : model_.groups())
+        if (g->block >= 0) per_block[g->block] = g->element_stress();
+    io::Field vm{"von_mises", 1, {}};
+    for (const auto& b : per_block) vm.values.insert(vm.values.end(), b.begin(), b.end());
+    data.cell_fields = {std::move(vm)};
+    pvd_->add(t, mesh, data, s_.x);
+}
+
+RunSummary ExplicitSolver::run() {
+    const auto wall0 = std::chrono::steady_clock::now();
+    const bool progress = opt_.progress && isatty(STDERR_FILENO);
+    auto last_progress = wall0;
+    const int n = s_.node_count(), nr = s_.rotational_count();
+    const long cycles0 = element_cycles_;
+
+    auto choose_dt = [&]() {
+        // Force providers' springs (contact penalties) act in parallel with the elements, so
+        // omega_max^2 <= omega_elements^2 + sum omega_p^2 (Weyl's inequality): the stable steps
+        // combine as 1/dt^2 = 1/dt_e^2 + sum 1/dt_p^2. Taking only the smallest step is not enough:
+        // two bars in penalty contact went unstable at 0.9 x min(dt_e, dt_p) (tests/contact).
+        double inv2 = 1.0 / (stability_factor_ * dt_crit_ * stability_factor_ * dt_crit_);
+        for (const auto& p : model_.force_providers()) {
+            const double dp = p->stable_time_step(s_);
+            if (std::isfinite(dp) && dp > 0.0) inv2 += 1.0 / (dp * dp);
+        }
+        double dt = opt_.dt_scale / std::sqrt(inv2);
+        if (opt_.fixed_dt > 0.0) {
+            dt = opt_.fixed_dt;
+            if (dt > stability_factor_ * dt_crit_ && !opt_.allow_unstable_fixed_dt)
+                throw SolverError(fmt::format(
+                    "explicit run '{}' at step {}, t = {:.6g} s: the fixed time step {:.4g} s is now above the critical "
+                    "step {:.4g} s of {} (the element deformed)",
+                    opt_.name, step_, t_, dt, stability_factor_ * dt_crit_, element_name(dt_group_, dt_element_)));
+        }
+        return dt;
+    };
+    double dt_half = choose_dt();
+    double dt_prev = 0.0;
+    summary_.first_dt = dt_half;
+    summary_.min_dt = std::numeric_limits<double>::infinity();
+    summary_.max_dt = 0.0;
+    summary_.controlling_dt = dt_crit_;
+    int ctrl_group = dt_group_, ctrl_element = dt_element_;
+    EnergySummary& E = summary_.energy;
+    E.initial = e0_;
+    E.kinetic = e_kin_;
+    E.internal = e_int_;
+    E.hourglass = e_hg_;
+    record(true);
+    write_vtu(0.0);
+
+    // Energy bookkeeping: wext/damp are the work over step n of the forces at time n, taken with
+    // the mid-point velocity (v(n-1/2) + v(n+1/2))/2; the *_half parts use v(n-1/2) alone. The
+    // energy reported at time n adds only the half parts of step n, which makes the balance with
+    // the kinetic energy 1/2 m v(n-1/2).v(n+1/2) and the strain energy at x(n) exact for a linear
+    // system with loads (a constant force on a free mass balances to round-off).
+    struct Partial {
+        double ke = 0, ke_plus = 0, damp = 0, wext = 0, wabs = 0, damp_half = 0, wext_half = 0;
+        double wprov = 0, wprov_half = 0;
+        int bad = -1;
+    };
+    const int chunks = par::chunk_count(n);
+    std::vector<Partial> partial(chunks);
+    const double tiny = 1e-12 * opt_.end_time;
+
+    while (t_ < opt_.end_time - tiny) {
+        // No shortened last step: a change of step changes the discrete energy that central
+        // differences conserve; the run ends at the first step at or after end_time (as LS-DYNA).
+        const double dtavg = step_ == 0 ? 0.5 * dt_half : 0.5 * (dt_prev + dt_half);
+        external_forces(t_);
+        const bool providers = !model_.force_providers().empty();
+        if (providers) {
+            for (auto& f : fprov_) f.setZero();
+            for (auto& m : mprov_) m.setZero();
+            for (auto& p : model_.force_providers()) p->add_forces(t_, s_, fprov_, mprov_);
+        }
+        for (const auto& mo : model_.motions())
+            for (int node : mo.nodes) {
+                const Vec3 v = (mo.position(s_.X[node], t_ + dt_half) - s_.x[node]) / dt_half;
+                for (int d = 0; d < 3; ++d) target_[target_index_[node]][d] = v[d];
+            }
+        // Prescribed velocities over the coming half step.
+        for (const auto& p : model_.prescribed()) {
+            const double tn = t_ + dt_half;
+            for (int node : p.nodes) {
+                double v;
+                if (p.displacement)
+                    v = (p.value * p.curve(tn) - (s_.x[node][p.dof] - s_.X[node][p.dof])) / dt_half;
+                else
+                    v = p.value * p.curve(t_ + 0.5 * dt_half);
+                target_[target_index_[node]][p.dof] = v;
+            }
+        }
+        // Central difference (Eq 2-5 with lumped M): v(n+1/2) from v(n-1/2), with the damping force
+        // -alpha m v taken at the mid-point (v(n-1/2) + v(n+1/2))/2 (second order, unconditionally
+        // stable for the damping term); x(n+1) = x(n) + dt v(n+1/2).
+#pragma omp parallel for schedule(static) if (n >= par::kParallelMin)
+        for (int c = 0; c < chunks; ++c) {
+            Partial p;
+            const auto [i0, i1] = par::chunk_range(c, n);
+            for (int i = i0; i < i1; ++i) {
+                const double m = s_.mass[i];
+                if (!(m > 0.0)) continue;  // a node no element uses
+                const Vec3 vm = s_.v[i];
+                const Vec3 F = providers ? Vec3(fext_[i] + fprov_[i] - s_.f[i]) : Vec3(fext_[i] - s_.f[i]);
+                const double a = alpha_[i] * dtavg * 0.5;
+                Vec3 vp = ((1.0 - a) * vm + (dtavg / m) * F) / (1.0 + a);
+                const unsigned fx = fixed_[i] & 7u;
+                const int ti = target_index_[i];
+                if (fx || ti >= 0) {
+                    for (int d = 0; d < 3; ++d) {
+                        if ((fx >> d) & 1u)
+                            vp[d] = 0.0;
+                        else if (ti >= 0 && !std::isnan(target_[ti][d]))
+                            vp[d] = target_[ti][d];
+                        else
+                            continue;
+                        // Work of the reaction that enforces the constraint.
+                        const double vavg = 0.5 * (vm[d] + vp[d]);
+                        const double R = m * (vp[d] - vm[d]) / dtavg - F[d] + alpha_[i] * m * vavg;
+                        p.wext += R * dtavg * vavg;
+                        p.wext_half += 0.5 * R * dtavg * vm[d];
+                        p.wabs += std::abs(R * dtavg * vavg);
+                    }
+                }
+                const Vec3 vavg = 0.5 * (vm + vp);
+                const double we = fext_[i].dot(vavg) * dtavg;
+                p.wext += we;
+                p.wext_half += 0.5 * fext_[i].dot(vm) * dtavg;
+                p.wabs += std::abs(we);
+                p.damp += alpha_[i] * m * vavg.squaredNorm() * dtavg;
+                p.damp_half += 0.5 * alpha_[i] * m * vavg.dot(vm) * dtavg;
+                if (providers) {
+                    p.wprov += fprov_[i].dot(vavg) * dtavg;
+                    p.wprov_half += 0.5 * fprov_[i].dot(vm) * dtavg;
+                }
+                p.ke += 0.5 * m * vm.dot(vp);
+                const double kp = 0.5 * m * vp.squaredNorm();
+                p.ke_plus += kp;
+                if (!std::isfinite(kp) && p.bad < 0) p.bad = i;
+                s_.v[i] = vp;
+                s_.x[i] += dt_half * vp;
+            }
+            partial[c] = p;
+        }
+        Partial tot;
+        for (const auto& p : partial) {  // fixed order: deterministic
+            tot.ke += p.ke;
+            tot.ke_plus += p.ke_plus;
+            tot.damp += p.damp;
+            tot.wext += p.wext;
+            tot.wabs += p.wabs;
+            tot.wext_half += p.wext_half;
+            tot.damp_half += p.damp_half;
+            tot.wprov += p.wprov;
+            tot.wprov_half += p.wprov_half;
+            if (p.bad >= 0 && tot.bad < 0) tot.bad = p.bad;
+        }
+        // Rotational DOFs (beam nodes): isotropic inertia, so the gyroscopic term w x Jw vanishes;
+        // the nodal triad is updated by the exponential map of w dt.
+        for (int k = 0; k < nr; ++k) {
+            const int node = s_.rot_node[k];
+            const double J = s_.inertia[k];
+            const Vec3 wm = s_.omega[k];
+            const Vec3 M = providers ? Vec3(mext_[k] + mprov_[k] - s_.moment[k]) : Vec3(mext_[k] - s_.moment[k]);
+            const double a = alpha_rot_[k] * dtavg * 0.5;
+            Vec3 wp = ((1.0 - a) * wm + (dtavg / J) * M) / (1.0 + a);
+            for (int d = 0; d < 3; ++d)
+                if ((fixed_[node] >> (d + 3)) & 1u) {
+                    wp[d] = 0.0;
+                    const double wa = 0.5 * (wm[d] + wp[d]);
+                    const double R = J * (wp[d] - wm[d]) / dtavg - M[d] + alpha_rot_[k] * J * wa;
+                    tot.wext += R * dtavg * wa;
+                    tot.wext_half += 0.5 * R * dtavg * wm[d];
+                }
+            const Vec3 wavg = 0.5 * (wm + wp);
+            const double we = mext_[k].dot(wavg) * dtavg;
+            tot.wext += we;
+            tot.wext_half += 0.5 * mext_[k].dot(wm) * dtavg;
+            tot.wabs += std::abs(we);
+            tot.damp += alpha_rot_[k] * J * wavg.squaredNorm() * dtavg;
+            tot.damp_half += 0.5 * alpha_rot_[k] * J * wavg.dot(wm) * dtavg;
+            if (providers) {
+                tot.wprov += mprov_[k].dot(wavg) * dtavg;
+                tot.wprov_half += 0.5 * mprov_[k].dot(wm) * dtavg;
+            }
+            tot.ke += 0.5 * J * wm.dot(wp);
+            tot.ke_plus += 0.5 * J * wp.squaredNorm();
+            if (!std::isfinite(wp.squaredNorm()) && tot.bad < 0) tot.bad = node;
+            s_.omega[k] = wp;
+            // Rodrigues: exp([phi]x) = I + sin(a) K + (1 - cos a) K^2, K the unit skew matrix of phi.
+            const Vec3 phi = dt_half * wp;
+            const double angle = phi.norm();
+            if (angle > 0.0) {
+                const Vec3 e = phi / angle;
+                Mat3 K;
+                K << 0, -e.z(), e.y(), e.z(), 0, -e.x(), -e.y(), e.x(), 0;
+                const Mat3 dR = Mat3::Identity() + std::sin(angle) * K + (1.0 - std::cos(angle)) * (K * K);
+                s_.rotation[k] = dR * s_.rotation[k];
+            }
+        }
+        // Energy balance at time n (kinetic from v(n-1/2).v(n+1/2), strain energy at x(n)).
+        E.kinetic = tot.ke;
+        E.internal = e_int_;
+        E.hourglass = e_hg_;
+        E.damping = e_damp_ + tot.damp_half;
+        E.viscous = e_visc_ + 0.5 * visc_power_ * dtavg;
+        E.external = w_ext_ + tot.wext_half;
+        E.contact = -(w_prov_ + tot.wprov_half);
+        w_prov_ += tot.wprov;
+        w_ext_ += tot.wext;
+        w_abs_ += tot.wabs;
+        e_damp_ += tot.damp;
+        e_visc_ += visc_power_ * dtavg;
+        E.balance_error =
+            E.kinetic + E.internal + E.hourglass + E.damping + E.viscous + E.contact - E.external - E.initial;
+        E.max_abs_balance_error = std::max(E.max_abs_balance_error, std::abs(E.balance_error));
+        input_scale_ = std::abs(e0_) + w_abs_ + std::abs(w_prov_);
+        E.reference = std::max({E.reference, input_scale_, tot.ke_plus + e_int_ + e_hg_});
+
+        if (tot.bad >= 0) unstable(fmt::format("non-finite velocity at node {}", tot.bad));
+        if (tot.ke_plus + e_int_ + e_hg_ > opt_.energy_growth_factor * input_scale_ && input_scale_ > 0.0)
+            unstable(fmt::format("energy growth: kinetic + internal energy {:.4g} J exceeds {} x the energy put in "
+                                 "({:.4g} J)",
+                                 tot.ke_plus + e_int_ + e_hg_, opt_.energy_growth_factor, input_scale_));
+
+        summary_.min_dt = std::min(summary_.min_dt, dt_half);
+        summary_.max_dt = std::max(summary_.max_dt, dt_half);
+        if (dt_crit_ < summary_.controlling_dt || step_ == 0) {
+            summary_.controlling_dt = std::min(summary_.controlling_dt, dt_crit_);
+            ctrl_group = dt_group_;
+            ctrl_element = dt_element_;
+        }
+        t_ += dt_half;
+        ++step_;
+        // Forces at x(n+1) (rate terms from v(n+1/2)); critical step every dt_interval cycles.
+        compute_forces(step_ % opt_.dt_interval == 0);
+        if (dt_crit_ < summary_.controlling_dt) {
+            summary_.controlling_dt = dt_crit_;
+            ctrl_group = dt_group_;
+            ctrl_element = dt_element_;
+        }
+        dt_prev = dt_half;
+        dt_half = choose_dt();
+        record(false);
+        write_vtu(t_);
+        if (progress) {
+            const auto now = std::chrono::steady_clock::now();
+            if (std::chrono::duration<double>(now - last_progress).count() > 0.5) {
+                last_progress = now;
+                std::fprintf(stderr, "\r%s: t = %.4g / %.4g s, step %ld, dt %.3g s, KE %.3g J, IE %.3g J   ",
+                             opt_.name.c_str(), t_, opt_.end_time, step_, dt_half, E.kinetic, E.internal);
+                std::fflush(stderr);
+            }
+        }
+    }
+    if (progress) std::fprintf(stderr, "\n");
+    if (pvd_ && next_vtu_ > t_) {  // the last state, unless just written
+        next_vtu_ = t_;
+        write_vtu(t_);
+    }
+    // The last state (kinetic energy at t_end from v(n-1/2) alone: no v(n+1/2) exists yet).
+    if (history_.time.empty() || history_.time.back() < t_) record(true);
+
+    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+    summary_.steps = step_;
+    summary_.end_time = t_;
+    summary_.threads = par::threads();
+    summary_.wall_s = wall;
+    summary_.element_cycles_per_s = wall > 0 ? static_cast<double>(element_cycles_ - cycles0) / wall : 0.0;
+    if (ctrl_group >= 0) {
+        const auto& g = *model_.groups()[ctrl_group];
+        summary_.controlling_part = g.part;
+        summary_.controlling_kind = g.kind();
+        summary_.controlling_block = g.block;
+        summary_.controlling_element = ctrl_element;
+    }
+    if (!opt_.h5_path.empty()) {
+        io::H5Writer w(opt_.h5_path);
+        w.write("time", history_.time);
+        for (const auto& h : history_.nodes) {
+            Eigen::MatrixXd u(h.displacement.size(), 3), v(h.velocity.size(), 3);
+            for (std::size_t i = 0; i < h.displacement.size(); ++i) {
+                u.row(i) = h.displacement[i].transpose();
+                v.row(i) = h.velocity[i].transpose();
+            }
+            w.write("history/" + h.name + "/displacement", u);
+            w.write("history/" + h.name + "/velocity", v);
+            w.attribute("history/" + h.name + "/displacement", "node", static_cast<double>(h.node));
+        }
+        w.write("energy/kinetic", history_.kinetic);
+        w.write("energy/internal", history_.internal);
+        w.write("energy/hourglass", history_.hourglass);
+        w.write("energy/damping", history_.damping);
+        w.write("energy/viscous", history_.viscous);
+        w.write("energy/external_work", history_.external);
+        w.write("energy/contact", history_.contact);
+        w.write("energy/balance_error", history_.balance);
+        for (const auto& [part, vm] : history_.max_von_mises) w.write("max_von_mises/" + part, vm);
+        w.attribute("/", "summary", summary_.to_json().dump());
+        w.commit();
+    }
+    if (opt_.print_summary) std::cout << summary_.text() << std::flush;
+    return summary_;
+}
+
+}  // namespace fem

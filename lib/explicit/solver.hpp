@@ -1,0 +1,297 @@
+#pragma once
+// Explicit dynamic solver (thesis Sec 2.3 and 2.5): central-difference integration of
+// M a + C v + f_int(x) = f_ext (Eq 2-5) with a lumped diagonal mass, a time step of 0.9 x the
+// smallest element critical step of Table 2-1 re-evaluated on the current coordinates (Eq 2-27),
+// mass-proportional Rayleigh damping per part (Eq 2-39, like *DAMPING_PART_MASS), bulk viscosity
+// and stiffness damping in solids, loads, constraints, energy accounting, histories and output.
+//
+// Usage: the compliant beam of thesis Table 2-8 (0.4 m steel wire, d = 0.6 mm, 100 beam elements,
+// 0.015 g tip mass, 0.003 N tip load for 0.2 s, then free vibration):
+//
+//   #include "explicit/solver.hpp"
+//   using namespace fem;
+//   Mesh mesh = line_beam2(Vec3(0, 0, 0), Vec3(0.4, 0, 0), 100, "beam");    // nodes sets start/end
+//   const auto steel = ElasticMaterial::make("steel", 209e9, 0.3, 7957);
+//   ExplicitModel model(mesh);
+//   model.add_beams("beam", steel, {beam::Section::circular(0.6e-3)});
+//   const int tip = mesh.node_set("end")[0];
+//   model.add_point_mass("tip mass", tip, 0.015e-3);
+//   model.fix(mesh.node_set("start"), Dofs::all());                         // clamped root
+//   model.add_nodal_force({tip}, Vec3(0, -0.003, 0), Curve::pulse(0.0, 0.2)); // 0.003 N for 0.2 s
+//   model.set_mass_damping("beam", 0.165);  model.set_mass_damping("tip mass", 0.165);  // alpha, Table 2-10
+//   ExplicitOptions opt;  opt.end_time = 4.0;  opt.history_nodes = {{"tip", tip}};
+//   opt.history_interval = 1e-3;  opt.h5_path = "tip.h5";                       // optional outputs
+//   ExplicitSolver solver(model, opt);
+//   RunSummary summary = solver.run();        // prints the d3hsp/glstat-like summary
+//   const History& h = solver.history();      // h.time, h.nodes[0].displacement[i].y(), energies
+//   study.record_run({"compliant_beam", summary.to_json()});
+//
+// Sign convention: internal forces are resisting forces; a = (f_ext - f_int - alpha m v) / m.
+// Kinetic energy is reported as 1/2 m v(n-1/2).v(n+1/2), the quantity that the central-difference
+// scheme conserves exactly together with the strain energy of a linear system, so the energy
+// balance error measures the nonlinear and viscous terms only.
+#include <array>
+#include <chrono>
+#include <filesystem>
+#include <functional>
+#include <map>
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <nlohmann/json_fwd.hpp>
+
+#include "explicit/curve.hpp"
+#include "explicit/element_group.hpp"
+#include "explicit/groups.hpp"
+#include "io/vtu.hpp"
+#include "mesh/mesh.hpp"
+
+namespace fem {
+
+/// Degrees of freedom, as a bit mask: Dofs::x | Dofs::y ... (global axes).
+struct Dofs {
+    unsigned mask = 0;
+    static constexpr unsigned x = 1, y = 2, z = 4, rx = 8, ry = 16, rz = 32;
+    static Dofs all() { return {63}; }
+    static Dofs translations() { return {7}; }
+    static Dofs rotations() { return {56}; }
+    static Dofs of(unsigned m) { return {m}; }
+    bool has(int dof) const { return (mask >> dof) & 1u; }  // dof 0..5
+};
+
+/// The model: mesh, element groups (parts), constraints, loads, damping, initial conditions.
+class ExplicitModel {
+public:
+    explicit ExplicitModel(Mesh mesh);
+    const Mesh& mesh() const { return mesh_; }
+
+    // --- parts (one group per block of the part) ---
+    void add_hex8(std::string_view part, const ElasticMaterial& material, const Hex8Options& options = {});
+    void add_beams(std::string_view part, const ElasticMaterial& material, const BeamOptions& options);
+    /// A point mass on one node (thesis "Mass 166"); several calls with the same part name add to it.
+    void add_point_mass(const std::string& part, int node, double mass, double rotational_inertia = 0.0);
+    /// Every Point1 element of a Point1 block `part` gets `mass_each`.
+    void add_point_masses(std::string_view part, double mass_each, double rotational_inertia_each = 0.0);
+    /// Any other element group (shells, tetrahedra later).
+    void add_group(std::unique_ptr<ElementGroup> group);
+
+    // --- constraints and loads ---
+    void fix(const std::vector<int>& nodes, Dofs dofs = Dofs::all());
+    /// Prescribed velocity v(t) = value * curve(t) along global dof (0..2 translations, 3..5 rotations).
+    void prescribe_velocity(const std::vector<int>& nodes, int dof, double value, Curve curve = {});
+    /// Nodes that follow x(t) = position(X, t) exactly (all three translations), e.g. finger root
+    /// nodes tied to a rotating rigid drum. position(X, 0) should be X.
+    void prescribe_motion(const std::vector<int>& nodes, std::function<Vec3(const Vec3& X, double t)> position);
+    /// Contact and other state-dependent forces (see ForceProvider); returns a reference to it.
+    ForceProvider& add_force_provider(std::unique_ptr<ForceProvider> provider);
+    /// Prescribed displacement u(t) = value * curve(t) along dof (measured from the reference position;
+    /// translations only).
+    void prescribe_displacement(const std::vector<int>& nodes, int dof, double value, Curve curve);
+    /// A force (per node, global) scaled by curve(t).
+    void add_nodal_force(const std::vector<int>& nodes, const Vec3& force, Curve curve = {});
+    /// A moment (per node, global) scaled by curve(t); the nodes must carry rotations (beams).
+    void add_nodal_moment(const std::vector<int>& nodes, const Vec3& moment, Curve curve = {});
+    /// Gravity acceleration g switched on at t_on (body force m g on every node's mass).
+    void set_gravity(const Vec3& g, double t_on = 0.0);
+    /// Mass-proportional damping alpha [1/s] of Eq 2-39 on the nodes of `part` (force -alpha m v,
+    /// also on rotations), like *DAMPING_PART_MASS. A node shared by parts takes the largest alpha.
+    void set_mass_damping(std::string_view part, double alpha);
+    /// Mass-proportional damping on every node.
+    void set_mass_damping(double alpha);
+
+    // --- initial conditions ---
+    void set_initial_velocity(const std::vector<int>& nodes, const Vec3& v);
+    /// Initial velocity from a function of the reference position (e.g. a rigid spin or a mode).
+    void set_initial_velocity(const std::function<Vec3(const Vec3&)>& v_of_x);
+    void set_initial_angular_velocity(const std::vector<int>& nodes, const Vec3& w);
+
+    // --- internals used by the solver ---
+    struct Prescribed {
+        std::vector<int> nodes;
+        int dof;
+        double value;
+        Curve curve;
+        bool displacement;
+    };
+    struct NodalLoad {
+        std::vector<int> nodes;
+        Vec3 value;
+        Curve curve;
+        bool moment;
+    };
+    struct Motion {
+        std::vector<int> nodes;
+        std::function<Vec3(const Vec3&, double)> position;
+    };
+    const std::vector<Motion>& motions() const { return motions_; }
+    std::vector<std::unique_ptr<ForceProvider>>& force_providers() { return providers_; }
+    std::vector<std::unique_ptr<ElementGroup>>& groups() { return groups_; }
+    const std::vector<std::unique_ptr<ElementGroup>>& groups() const { return groups_; }
+    const std::vector<unsigned>& fixed() const { return fixed_; }
+    const std::vector<Prescribed>& prescribed() const { return prescribed_; }
+    const std::vector<NodalLoad>& loads() const { return loads_; }
+    const std::map<std::string, double, std::less<>>& mass_damping() const { return damping_; }
+    double global_mass_damping() const { return global_alpha_; }
+    const Vec3& gravity() const { return gravity_; }
+    double gravity_on() const { return gravity_on_; }
+    const std::vector<Vec3>& initial_velocity() const { return v0_; }
+    const std::map<int, Vec3>& initial_angular_velocity() const { return w0_; }
+
+private:
+    void check_nodes(const std::vector<int>& nodes, const char* what) const;
+    Mesh mesh_;
+    std::vector<std::unique_ptr<ElementGroup>> groups_;
+    std::map<std::string, std::pair<std::vector<int>, std::pair<std::vector<double>, std::vector<double>>>,
+             std::less<>>
+        point_data_;
+    std::vector<unsigned> fixed_;
+    std::vector<Prescribed> prescribed_;
+    std::vector<NodalLoad> loads_;
+    std::vector<Motion> motions_;
+    std::vector<std::unique_ptr<ForceProvider>> providers_;
+    std::map<std::string, double, std::less<>> damping_;
+    double global_alpha_ = 0.0;
+    Vec3 gravity_ = Vec3::Zero();
+    double gravity_on_ = 0.0;
+    std::vector<Vec3> v0_;
+    std::map<int, Vec3> w0_;
+    bool finalized_ = false;
+    void finalize();  // turns the collected point masses into groups (called by the solver)
+    friend class ExplicitSolver;
+};
+
+struct HistoryNode {
+    std::string name;
+    int node = -1;
+};
+
+struct ExplicitOptions {
+    double end_time = 0.0;           // [s]
+    double dt_scale = 0.9;           // a of Eq 2-27
+    double fixed_dt = 0.0;           // > 0: use this step; refused (InputError) when above critical
+    bool allow_unstable_fixed_dt = false;  // testing the instability detector only
+    int dt_interval = 1;             // re-evaluate the critical step every N cycles (1: every cycle)
+    double mass_scaling_dt = 0.0;    // > 0: selective mass scaling so that the step is at least this
+    double energy_growth_factor = 10.0;  // instability when KE + IE exceeds this x the energy put in
+    // One-point hexahedra whose nodes are shared by few elements (surfaces, edges, corners) have a
+    // higher omega_max than Table 2-1's V/A_max predicts (a free cube: 0.73 x the Table 2-1 step at
+    // nu = 0.3, 0.58 at nu = 0.49; a 6x6x6 rubber block 0.86), so 0.9 x Table 2-1 can be unstable.
+    // When true, the solver measures omega_max of the hexahedra once at the start (Lanczos, Spectra,
+    // on the lumped-mass system) and scales the Table 2-1 steps by min(1, (2/omega_max)/dt_table).
+    bool hex_stability_check = true;
+    // Histories (in memory, and in HDF5 when h5_path is set).
+    std::vector<HistoryNode> history_nodes;
+    double history_interval = 0.0;   // [s]; 0: every cycle
+    std::filesystem::path h5_path;
+    // Deformed states for ParaView (VTU files listed in a PVD) every vtu_interval.
+    std::filesystem::path pvd_path;
+    double vtu_interval = 0.0;
+    std::string name = "explicit";   // run name in the summary
+    bool print_summary = true;       // to stdout at the end
+    bool progress = true;            // an updating line on stderr, only when it is a terminal
+};
+
+/// Time histories recorded every history_interval: at time[i] the displacement is x(n+1) - X at
+/// t(n+1) = time[i], the velocity is v(n+1/2) (half a step earlier), and the energies are those of
+/// the balance at t(n), one step earlier (they need v(n+1/2)); negligible at output intervals.
+struct History {
+    struct Node {
+        std::string name;
+        int node = -1;
+        std::vector<Vec3> displacement, velocity;
+    };
+    std::vector<double> time;
+    std::vector<Node> nodes;
+    std::vector<double> kinetic, internal, hourglass, damping, viscous, external, contact, balance;
+    std::map<std::string, std::vector<double>> max_von_mises;  // per part
+};
+
+struct EnergySummary {
+    double kinetic = 0, internal = 0, hourglass = 0;
+    double damping = 0;       // dissipated by mass-proportional damping
+    double viscous = 0;       // dissipated by bulk viscosity and stiffness damping
+    double external = 0;      // work of loads, gravity and prescribed motion (reactions)
+    double contact = 0;       // energy taken by force providers (contact): minus their work
+    double initial = 0;       // total energy at t = 0
+    double balance_error = 0; // kinetic + internal + hourglass + damping + viscous + contact - external - initial
+    double max_abs_balance_error = 0;
+    double reference = 0;     // energy scale the relative error is taken against
+    double relative_error() const { return reference > 0 ? max_abs_balance_error / reference : 0.0; }
+};
+
+/// The run summary (LS-DYNA d3hsp/glstat style); to_json() feeds Study::record_run.
+struct RunSummary {
+    std::string name;
+    int nodes = 0, elements = 0, rotational_nodes = 0, threads = 1;
+    long steps = 0;
+    double end_time = 0, first_dt = 0, min_dt = 0, max_dt = 0;
+    std::string controlling_part, controlling_kind;
+    int controlling_block = -1, controlling_element = -1;
+    double controlling_dt = 0;   // its critical step (before the 0.9 and the stability factor)
+    double stability_factor = 1; // measured 2/omega_max over the Table 2-1 step (<= 1; hexahedra)
+    double mass = 0, added_mass = 0, added_mass_fraction = 0;
+    EnergySummary energy;
+    double wall_s = 0, element_cycles_per_s = 0;
+    std::string text() const;
+    nlohmann::json to_json() const;
+};
+
+class ExplicitSolver {
+public:
+    ExplicitSolver(ExplicitModel& model, ExplicitOptions options);
+    ~ExplicitSolver();
+    /// Runs to end_time. Throws SolverError on instability (NaN, energy growth, inverted element),
+    /// InputError on a fixed step above critical.
+    RunSummary run();
+    /// Called at every history sample (after the sample is stored), e.g. to stop early or probe.
+    std::function<void(const ExplicitSolver&)> observer;
+
+    const NodalState& state() const { return s_; }
+    const History& history() const { return history_; }
+    double time() const { return t_; }
+    long step() const { return step_; }
+    /// Current critical step (Table 2-1 times the measured stability factor, before the 0.9).
+    double critical_dt() const { return stability_factor_ * dt_crit_; }
+    /// 2/omega_max measured on the hexahedra over the Table 2-1 step (1 when not measured or above 1).
+    double stability_factor() const { return stability_factor_; }
+
+private:
+    void initialize();
+    void compute_forces(bool compute_dt);
+    void external_forces(double t);
+    void record(bool force);
+    void write_vtu(double t);
+    [[noreturn]] void unstable(const std::string& why);
+    std::string element_name(int group, int element) const;
+
+    ExplicitModel& model_;
+    ExplicitOptions opt_;
+    NodalState s_;
+    History history_;
+    RunSummary summary_;
+    std::vector<Vec3> fext_, mext_, fprov_, mprov_;
+    double w_prov_ = 0.0;
+    std::vector<double> alpha_, alpha_rot_;   // per node / rotational slot
+    std::vector<unsigned> fixed_;             // per node mask
+    std::vector<unsigned char> constrained_;  // per node: any dof fixed or prescribed
+    double t_ = 0.0;
+    long step_ = 0;
+    double stability_factor_ = 1.0;
+    double measure_hex_omega_max();
+    double dt_crit_ = 0.0;
+    int dt_group_ = -1, dt_element_ = -1;
+    double e_int_ = 0, e_hg_ = 0, visc_power_ = 0;
+    std::map<std::string, double> max_vm_;
+    double next_history_ = 0.0, next_vtu_ = 0.0;
+    double e_kin_ = 0, e_damp_ = 0, e_visc_ = 0, w_ext_ = 0, e0_ = 0, input_scale_ = 0;
+    std::unique_ptr<io::PvdSeries> pvd_;
+    double w_abs_ = 0.0;
+    bool has_loads_ = false;
+    std::vector<std::array<double, 3>> target_;  // prescribed velocity per constrained node (NaN: free)
+    std::vector<int> target_index_;              // per node: index into target_, or -1
+    long element_cycles_ = 0;
+};
+
+}  // namespace fem

@@ -1,0 +1,71 @@
+#pragma once
+// A modal case file (TOML) for the fem-modal program: mesh, materials per part, supports and
+// couplings by physical group, number of modes. Example (paths relative to the case file):
+//
+//   mesh = "frame.msh"          # Gmsh 2.2 or 4.1; physical groups give parts and node sets
+//   modes = 30
+//   shift_hz = 0.0              # < 0 for a free structure (rigid-body modes), see modal.hpp
+//   mass = "consistent"         # or "lumped"
+//   output = "frame_modes"      # folder for frequencies.csv, modes.h5, modes.pvd (+ VTUs)
+//
+//   [materials.steel]
+//   E = 210e9                   # Pa
+//   nu = 0.28
+//   rho = 7700.0                # kg/m^3
+//
+//   [[parts]]                   # every element block of the mesh must belong to a listed part
+//   name = "plate"              # physical group name
+//   material = "steel"
+//   thickness = 0.002           # only for shell parts (quad4, MITC4)
+//
+//   [[supports]]
+//   set = "base"                # physical group giving a node set
+//   dofs = ["ux", "uy", "uz"]   # default: all DOFs the nodes carry
+//
+//   [[couplings]]               # ANSYS CP sets: the screws of thesis Sec 2.4.2
+//   sets = ["screw1_plate", "screw1_bracket"]   # node pairs at coincident places ...
+//   # set = "screw1"                            # ... or all nodes of one set share the DOFs
+//   dofs = ["ux", "uy", "uz"]   # default translations
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "assembly/dof_map.hpp"
+#include "element/solid_elements.hpp"
+#include "material/elastic.hpp"
+#include "modal/modal.hpp"
+
+namespace fem::modal {
+
+struct CasePart {
+    std::string name;
+    ElasticMaterial material;
+    double thickness = 0.0;  // > 0 for shells
+};
+struct CaseSupport {
+    std::string set;
+    DofMask dofs = kAllDofs;
+};
+struct CaseCoupling {
+    std::vector<std::string> sets;  // one set (couple all its nodes) or two (coincident pairs)
+    DofMask dofs = kTranslations;
+};
+
+struct ModalCase {
+    std::filesystem::path mesh, output;
+    ModalOptions options;
+    solid::MassKind mass = solid::MassKind::Consistent;
+    std::vector<CasePart> parts;
+    std::vector<CaseSupport> supports;
+    std::vector<CaseCoupling> couplings;
+};
+
+/// Parses and validates the case file; InputError naming the file, the key and the problem (missing
+/// file, TOML syntax, unknown material, non-physical material, unknown DOF name...).
+ModalCase read_modal_case(const std::filesystem::path& path);
+
+/// Reads the mesh, builds the model, solves, writes the results into case.output and returns the
+/// run summary. Unknown physical groups and blocks without a part are InputErrors.
+std::string run_modal_case(const ModalCase& c);
+
+}  // namespace fem::modal

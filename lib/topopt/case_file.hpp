@@ -1,0 +1,67 @@
+#pragma once
+// The TOML case file of the fem-topopt program: a design domain (a rectangular grid or a Gmsh mesh
+// of quadrilaterals), a plane-stress material and thickness, supports, point loads in load cases,
+// passive regions and the optimization settings. Example (the short cantilever of thesis Table 2-11):
+//
+//   [domain]
+//   type = "rectangle"          # or "gmsh" with mesh = "part.msh" (path relative to the case file)
+//   size = [0.15, 0.1]          # m
+//   elements = [75, 50]
+//   element = "quad8"           # or "quad4"
+//   thickness = 0.001           # m
+//
+//   [material]
+//   E = 207e9                   # Pa
+//   nu = 0.3
+//
+//   [optimization]
+//   removed = 0.7               # volume fraction removed (or volume_fraction = 0.3, the fraction kept)
+//   penalty = 3.0
+//   filter = "sensitivity"      # none | sensitivity | density
+//   filter_radius = 0.003       # m
+//   move_limit = 0.2
+//   change_tolerance = 0.01
+//   max_iterations = 200
+//
+//   [[support]]                 # node selection: edge = "x0"|"x1"|"y0"|"y1", node_set = "name",
+//   edge = "x0"                 #   at = [x, y] (the node there), or box = [xmin, ymin, xmax, ymax]
+//   fix = ["x", "y"]
+//
+//   [[load]]
+//   at = [0.15, 0.05]           # same node selections as supports; the force acts on every node
+//   force = [0.0, -3000.0]      # N
+//   case = 1                    # load case (1, 2, ...); compliances of the cases are summed
+//
+//   [[passive]]
+//   kind = "void"               # or "solid"
+//   circle = [0.1, 0.05, 0.01]  # or box = [xmin, ymin, xmax, ymax]: elements whose centroid is inside
+//
+//   [output]
+//   directory = "topopt-out"    # relative to the working directory
+//
+// Every mistake is an InputError naming the file, the table and the key.
+#include <filesystem>
+#include <string>
+#include <string_view>
+
+#include "mesh/mesh.hpp"
+#include "topopt/model.hpp"
+#include "topopt/simp.hpp"
+
+namespace fem::topopt {
+
+struct Case {
+    Mesh mesh;
+    Model model;
+    Settings settings;
+    std::filesystem::path output_directory = "topopt-out";
+    std::string summary;  // what was read, for the program's first lines of output
+};
+
+/// Parses case-file text; `source` names it in messages and `base` is the folder that relative mesh
+/// paths start from.
+Case parse_case(std::string_view text, const std::string& source, const std::filesystem::path& base = ".");
+/// Reads a case file (InputError when it cannot be opened).
+Case read_case(const std::filesystem::path& path);
+
+}  // namespace fem::topopt

@@ -1,0 +1,123 @@
+// Element-level checks of the linear solids (lib/element/solid_elements): rigid-body modes, mass,
+// constant-strain patch behaviour and lumping, on undistorted and distorted elements.
+#include <gtest/gtest.h>
+
+#include <vector>
+
+#include <Eigen/Eigenvalues>
+
+#include "core/error.hpp"
+#include "element/solid_elements.hpp"
+
+using namespace fem;
+
+namespace {
+
+const ElasticMaterial kSteel = ElasticMaterial::make("steel", 210e9, 0.3, 7800.0);
+
+// A distorted hex: the unit cube with corners moved (still convex).
+std::vector<Vec3> distorted_hex() {
+    return {Vec3(0, 0, 0), Vec3(1.1, 0.05, 0), Vec3(1.0, 0.9, 0.1), Vec3(-0.05, 1.0, 0),
+            Vec3(0.1, 0, 1.0), Vec3(1.0, 0.1, 1.2), Vec3(1.1, 1.1, 0.9), Vec3(0, 0.95, 1.0)};
+}
+
+// A straight-edged tet10 with mid-edge nodes at the midpoints (Gmsh order).
+std::vector<Vec3> tet10(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
+    return {a, b, c, d, (a + b) / 2, (b + c) / 2, (a + c) / 2, (a + d) / 2, (c + d) / 2, (b + d) / 2};
+}
+
+// Number of eigenvalues below tol * largest.
+int zero_modes(const Eigen::MatrixXd& K) {
+    Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(K);
+    const double top = es.eigenvalues().maxCoeff();
+    int z = 0;
+    for (double l : es.eigenvalues()) z += std::abs(l) < 1e-10 * top;
+    return z;
+}
+
+// Displacements of a linear field u = G x at the nodes, stacked ux, uy, uz per node.
+Eigen::VectorXd linear_field(const std::vector<Vec3>& x, const Mat3& G) {
+    Eigen::VectorXd u(3 * x.size());
+    for (std::size_t a = 0; a < x.size(); ++a) u.segment<3>(3 * a) = G * x[a];
+    return u;
+}
+
+}  // namespace
+
+TEST(SolidElements, Hex8HasExactlySixRigidModesAndIsSymmetric) {
+    for (bool im : {false, true}) {
+        const Eigen::MatrixXd K = solid::hex8_stiffness(distorted_hex(), kSteel, im);
+        EXPECT_LT((K - K.transpose()).norm(), 1e-12 * K.norm());
+        EXPECT_EQ(zero_modes(K), 6) << "incompatible modes " << im;
+    }
+}
+
+TEST(SolidElements, Tet10HasExactlySixRigidModes) {
+    const auto x = tet10(Vec3(0, 0, 0), Vec3(1, 0.1, 0), Vec3(0.2, 1, 0), Vec3(0.1, 0.2, 1.3));
+    EXPECT_EQ(zero_modes(solid::tet10_stiffness(x, kSteel)), 6);
+}
+
+TEST(SolidElements, ConstantStrainEnergyIsExact) {
+    // Patch-test ingredient: for u = G x (constant strain eps), u^T K u = V eps:D:eps exactly, also on
+    // a distorted hex with incompatible modes (Taylor's correction makes this hold).
+    Mat3 G;
+    G << 1e-3, 2e-4, -1e-4, 3e-4, -5e-4, 2e-4, 0.0, 1e-4, 7e-4;
+    const Mat3 eps = 0.5 * (G + G.transpose());
+    Eigen::Matrix<double, 6, 1> e;
+    e << eps(0, 0), eps(1, 1), eps(2, 2), 2 * eps(0, 1), 2 * eps(1, 2), 2 * eps(2, 0);
+    const double w = e.dot(solid::elasticity_matrix(kSteel) * e);
+    const auto xh = distorted_hex();
+    const double vh = solid::hex8_volume(xh);
+    for (bool im : {false, true}) {
+        const Eigen::VectorXd u = linear_field(xh, G);
+        EXPECT_NEAR(u.dot(solid::hex8_stiffness(xh, kSteel, im) * u), vh * w, 1e-10 * vh * w) << "incompatible " << im;
+    }
+    const auto xt = tet10(Vec3(0, 0, 0), Vec3(1, 0.1, 0), Vec3(0.2, 1, 0), Vec3(0.1, 0.2, 1.3));
+    const Eigen::VectorXd ut = linear_field(xt, G);
+    const double vt = solid::tet10_volume(xt);
+    EXPECT_NEAR(vt, (xt[1] - xt[0]).dot((xt[2] - xt[0]).cross(xt[3] - xt[0])) / 6, 1e-14);
+    EXPECT_NEAR(ut.dot(solid::tet10_stiffness(xt, kSteel) * ut), vt * w, 1e-10 * vt * w);
+}
+
+TEST(SolidElements, MassesCarryTheElementMass) {
+    const double rho = kSteel.density;
+    const auto xh = distorted_hex();
+    const double mh = rho * solid::hex8_volume(xh);
+    // A rigid translation in x: u^T M u is the element mass, for every mass kind.
+    Eigen::VectorXd tx = Eigen::VectorXd::Zero(24);
+    for (int a = 0; a < 8; ++a) tx(3 * a) = 1;
+    for (auto kind : {solid::MassKind::Consistent, solid::MassKind::Lumped})
+        EXPECT_NEAR(tx.dot(solid::hex8_mass(xh, rho, kind) * tx), mh, 1e-12 * mh);
+
+    const auto xt = tet10(Vec3(0, 0, 0), Vec3(1, 0.1, 0), Vec3(0.2, 1, 0), Vec3(0.1, 0.2, 1.3));
+    const double mt = rho * solid::tet10_volume(xt);
+    Eigen::VectorXd t10 = Eigen::VectorXd::Zero(30);
+    for (int a = 0; a < 10; ++a) t10(3 * a + 1) = 1;
+    for (auto rule : {solid::Tet10MassRule::Exact, solid::Tet10MassRule::FourPoint})
+        EXPECT_NEAR(t10.dot(solid::tet10_mass(xt, rho, solid::MassKind::Consistent, rule) * t10), mt, 1e-12 * mt);
+    // HRZ lumping: positive, corners 1/36 and mid-edge nodes 4/27 of the mass (straight tet).
+    const Eigen::MatrixXd ml = solid::tet10_mass(xt, rho, solid::MassKind::Lumped);
+    for (int a = 0; a < 4; ++a) EXPECT_NEAR(ml(3 * a, 3 * a), mt / 36, 1e-12 * mt);
+    for (int a = 4; a < 10; ++a) EXPECT_NEAR(ml(3 * a, 3 * a), 4 * mt / 27, 1e-12 * mt);
+    EXPECT_NEAR((ml - Eigen::MatrixXd(ml.diagonal().asDiagonal())).norm(), 0.0, 0.0);
+}
+
+TEST(SolidElements, Tet10ExactMassMatchesClosedForm) {
+    // On a straight tet, int L1^a L2^b L3^c L4^d dV = 6V a! b! c! d! / (a+b+c+d+3)! gives
+    // corner diagonal int (L(2L-1))^2 = 6V/420, mid-edge diagonal int (4 Li Lj)^2 = 32V/420 and
+    // corner-corner int Li(2Li-1) Lj(2Lj-1) = V/420.
+    const auto x = tet10(Vec3(0, 0, 0), Vec3(2, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 3));
+    const double v = 1.0;
+    const Eigen::MatrixXd m = solid::tet10_mass(x, 1.0);
+    EXPECT_NEAR(m(0, 0), 6 * v / 420, 1e-14);
+    EXPECT_NEAR(m(3 * 4, 3 * 4), 32 * v / 420, 1e-14);
+    EXPECT_NEAR(m(0, 3), v / 420, 1e-14);  // corner 0 - corner 1
+}
+
+TEST(SolidElements, InvertedElementIsRefused) {
+    auto x = distorted_hex();
+    std::swap(x[4], x[0]), std::swap(x[5], x[1]), std::swap(x[6], x[2]), std::swap(x[7], x[3]);
+    EXPECT_THROW(solid::hex8_stiffness(x, kSteel), InputError);
+    EXPECT_THROW(solid::tet10_stiffness(tet10(Vec3(0, 0, 0), Vec3(0, 1, 0), Vec3(1, 0, 0), Vec3(0, 0, 1)), kSteel), InputError);
+    EXPECT_THROW(solid::hex8_mass(std::vector<Vec3>(5), 1.0), InputError);
+}

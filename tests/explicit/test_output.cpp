@@ -1,0 +1,225 @@
+// Outputs of the explicit solver: HDF5 time histories, the VTU/PVD series, the run summary (text and
+// JSON for Study::record_run), loads by curves, gravity switched on at a time, prescribed displacement.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+
+#include <nlohmann/json.hpp>
+
+#include "core/error.hpp"
+#include "explicit/solver.hpp"
+#include "io/hdf5.hpp"
+
+using namespace fem;
+namespace fs = std::filesystem;
+
+namespace {
+const ElasticMaterial kSteel = ElasticMaterial::make("steel", 210e9, 0.3, 7800);
+}
+
+TEST(ExplicitOutput, WritesHistoriesVtuAndSummary) {
+    const fs::path dir = fs::temp_directory_path() / "fem_explicit_output_test";
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    Mesh mesh = box_hex8(0.1, 0.02, 0.02, 5, 1, 1, "bar");
+    ExplicitModel model(mesh);
+    model.add_hex8("bar", kSteel);
+    model.fix(mesh.node_set("x0"), Dofs::all());
+    const int tip = mesh.node_set("x1")[0];
+    model.add_nodal_force(mesh.node_set("x1"), Vec3(0, 10, 0), Curve({{0, 0}, {1e-4, 1}}));
+    ExplicitOptions o;
+    o.end_time = 2e-4;
+    o.progress = false;
+    o.print_summary = false;
+    o.name = "output test";
+    o.history_nodes = {{"tip", tip}};
+    o.history_interval = 1e-5;
+    o.h5_path = dir / "run.h5";
+    o.pvd_path = dir / "run.pvd";
+    o.vtu_interval = 5e-5;
+    ExplicitSolver solver(model, o);
+    const RunSummary sum = solver.run();
+    ASSERT_TRUE(fs::exists(o.h5_path));
+    ASSERT_TRUE(fs::exists(o.pvd_path));
+    const auto t = io::read_h5_matrix(o.h5_path, "time");
+    const auto u = io::read_h5_matrix(o.h5_path, "history/tip/displacement");
+    ASSERT_EQ(t.size(), static_cast<long>(solver.history().time.size()));
+    ASSERT_EQ(u.rows(), t.size());
+    EXPECT_EQ(u.cols(), 3);
+    EXPECT_DOUBLE_EQ(u(u.rows() - 1, 1), solver.history().nodes[0].displacement.back().y());
+    EXPECT_GT(u(u.rows() - 1, 1), 0.0);  // pushed in +y
+    const auto vm = io::read_h5_matrix(o.h5_path, "max_von_mises/bar");
+    EXPECT_GT(vm(vm.size() - 1), 0.0);
+    // 0, 5e-5, 1e-4, 1.5e-4, 2e-4 (+ the last state): at least 5 VTU files.
+    int vtu = 0;
+    for (const auto& e : fs::directory_iterator(dir)) vtu += e.path().extension() == ".vtu";
+    EXPECT_GE(vtu, 5);
+    // Summary: text and JSON carry the controlling element and the energies.
+    EXPECT_NE(sum.text().find("controlling element: part 'bar' block 0 hex8 element"), std::string::npos);
+    const nlohmann::json j = sum.to_json();
+    EXPECT_EQ(j["nodes"], mesh.node_count());
+    EXPECT_EQ(j["elements"], 5);
+    EXPECT_GT(j["steps"].get<long>(), 10);
+    EXPECT_GT(j["external_work_J"].get<double>(), 0.0);
+    EXPECT_LT(sum.energy.relative_error(), 1e-2);
+    fs::remove_all(dir);
+}
+
+// Gravity switched on at t_on: before it nothing moves; after it a free body falls with the
+// constant acceleration g. Central differences integrate a constant acceleration exactly: the
+// second difference of the displacement over the step is g (1e-9 relative). The force acts from the
+// first step time t_k >= t_on, and the scheme's force at t_k stands for [t_k - dt/2, t_k + dt/2], so
+// the final velocity is g (t_end + dt/2 - t_k) (a first version of this test compared with the
+// continuous u = g (t - t_on)^2 / 2 and ignored this half-step timing).
+TEST(ExplicitLoads, GravitySwitchedOnAtATime) {
+    Mesh mesh = line_beam2(Vec3::Zero(), Vec3(0.1, 0, 0), 2, "wire");
+    ExplicitModel model(mesh);
+    model.add_beams("wire", kSteel, {beam::Section::circular(1e-3)});
+    const double t_on = 1e-3, g = 9.81;
+    model.set_gravity(Vec3(0, 0, -g), t_on);
+    ExplicitOptions o;
+    o.end_time = 3e-3;
+    o.progress = false;
+    o.print_summary = false;
+    o.history_nodes = {{"a", 0}};
+    ExplicitSolver solver(model, o);
+    const auto sum = solver.run();
+    const auto& h = solver.history();
+    double t_k = -1;
+    for (std::size_t i = 0; i < h.time.size(); ++i) {
+        if (h.time[i] <= t_on) {
+            EXPECT_EQ(h.nodes[0].displacement[i].z(), 0.0) << h.time[i];
+        }
+        if (t_k < 0 && h.time[i] >= t_on) t_k = h.time[i];
+    }
+    const std::size_t n = h.time.size();
+    // constant step (a rigid fall does not change it): second difference = -g dt^2
+    const double dt = h.time[n - 2] - h.time[n - 3];
+    const double d2 = h.nodes[0].displacement[n - 2].z() - 2 * h.nodes[0].displacement[n - 3].z() +
+                      h.nodes[0].displacement[n - 4].z();
+    EXPECT_NEAR(d2 / (dt * dt), -g, 1e-6 * g);
+    // Work of gravity = kinetic energy (rigid fall): the balance closes to round-off.
+    EXPECT_LT(sum.energy.relative_error(), 1e-9);
+    EXPECT_NEAR(solver.state().v[0].z(), -g * (solver.time() - dt / 2 - t_k + dt / 2), 1e-9 * g * 2e-3);
+}
+
+// Prescribed displacement by a curve: the node follows it exactly at every step.
+TEST(ExplicitLoads, PrescribedDisplacementIsFollowedExactly) {
+    Mesh mesh = box_hex8(0.1, 0.02, 0.02, 5, 1, 1, "bar");
+    ExplicitModel model(mesh);
+    model.add_hex8("bar", kSteel);
+    model.fix(mesh.node_set("x0"), Dofs::all());
+    const Curve c({{0, 0}, {1e-4, 1}, {2e-4, 1}});
+    model.prescribe_displacement(mesh.node_set("x1"), 0, 1e-5, c);
+    ExplicitOptions o;
+    o.end_time = 2e-4;
+    o.progress = false;
+    o.print_summary = false;
+    const int n = mesh.node_set("x1")[0];
+    o.history_nodes = {{"end", n}};
+    ExplicitSolver solver(model, o);
+    const auto sum = solver.run();
+    const auto& h = solver.history();
+    for (std::size_t i = 0; i < h.time.size(); ++i)
+        EXPECT_NEAR(h.nodes[0].displacement[i].x(), 1e-5 * c(h.time[i]), 1e-12) << h.time[i];
+    // The reaction's work is the external work: balance closes to the bulk-viscosity bookkeeping.
+    EXPECT_GT(sum.energy.external, 0.0);
+    EXPECT_LT(sum.energy.relative_error(), 1e-2);
+}
+
+TEST(ExplicitInput, BadRequestsNameTheCulprit) {
+    Mesh mesh = box_hex8(0.1, 0.02, 0.02, 2, 1, 1, "bar");
+    ExplicitModel model(mesh);
+    EXPECT_THROW(model.add_hex8("finger", kSteel), InputError);  // no such part
+    model.add_hex8("bar", kSteel);
+    model.set_mass_damping("nothere", 1.0);
+    ExplicitOptions o;
+    o.end_time = 1e-4;
+    try {
+        ExplicitSolver s(model, o);
+        FAIL();
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("nothere"), std::string::npos);
+    }
+    EXPECT_THROW(Curve({{0, 1}, {0, 2}}, "bad"), InputError);
+    EXPECT_THROW(model.prescribe_velocity({0}, 4, 1.0), InputError);
+}
+
+namespace {
+// A penalty wall z >= 0 as a ForceProvider: f = -k z on nodes below it (a stand-in for contact).
+class PenaltyWall final : public ForceProvider {
+public:
+    explicit PenaltyWall(double k) : k_(k) {}
+    std::string name() const override { return "wall"; }
+    void add_forces(double, const NodalState& s, std::vector<Vec3>& f, std::vector<Vec3>&) override {
+        for (int i = 0; i < s.node_count(); ++i)
+            if (s.x[i].z() < 0) f[i].z() -= k_ * s.x[i].z();
+    }
+    double stable_time_step(const NodalState& s) const override {
+        double m = 1e300;
+        for (double mi : s.mass) m = std::min(m, mi);
+        return 2.0 * std::sqrt(m / k_);
+    }
+
+private:
+    double k_;
+};
+}  // namespace
+
+// A force provider (the hook contact uses): a block dropped on a penalty wall bounces back; the
+// work of the wall is reported as contact energy and the balance closes (1e-3: the penalty
+// spring is linear, the block elastic and undamped; the residual is the O(dt^2) contact onset).
+TEST(ExplicitForceProvider, PenaltyWallBounceClosesTheEnergyBalance) {
+    Mesh mesh = box_hex8(0.02, 0.02, 0.02, 2, 2, 2, "block");
+    mesh.translate(Vec3(0, 0, 1e-4));
+    ExplicitModel model(mesh);
+    model.add_hex8("block", kSteel);
+    model.set_initial_velocity([](const Vec3&) { return Vec3(0, 0, -1.0); });
+    model.add_force_provider(std::make_unique<PenaltyWall>(1e8));
+    ExplicitOptions o;
+    o.end_time = 1e-3;
+    o.progress = false;
+    o.print_summary = false;
+    ExplicitSolver solver(model, o);
+    double max_contact = 0;
+    solver.observer = [&](const ExplicitSolver& s) { max_contact = std::max(max_contact, s.history().contact.back()); };
+    const auto sum = solver.run();
+    double vz = 0, m = 0;
+    for (int i = 0; i < mesh.node_count(); ++i) {
+        vz += solver.state().mass[i] * solver.state().v[i].z();
+        m += solver.state().mass[i];
+    }
+    std::printf("penalty wall: rebound velocity %.4f m/s, max contact energy %.3g J of %.3g J, energy error %.2e\n",
+                vz / m, max_contact, sum.energy.initial, sum.energy.relative_error());
+    EXPECT_GT(vz / m, 0.5);                          // it bounced
+    EXPECT_GT(max_contact, 0.1 * sum.energy.initial);  // the wall stored energy on the way
+    EXPECT_LT(sum.energy.relative_error(), 1e-3);
+}
+
+// Nodes tied to a rigid rotation follow it exactly (the finger root on the drum).
+TEST(ExplicitLoads, PrescribedMotionIsFollowedExactly) {
+    Mesh mesh = box_hex8(0.1, 0.01, 0.01, 10, 1, 1, "finger");
+    mesh.translate(Vec3(0.05, -0.005, -0.005));
+    ExplicitModel model(mesh);
+    model.add_hex8("finger", ElasticMaterial::make("rubber", 6.1e6, 0.45, 1000));
+    const auto angle = [](double t) { return 10.0 * t * t; };
+    const auto pos = [&](const Vec3& X, double t) {
+        return Vec3(Eigen::AngleAxisd(angle(t), Vec3::UnitZ()).toRotationMatrix() * X);
+    };
+    const auto& root = mesh.node_set("x0");
+    model.prescribe_motion(root, pos);
+    model.set_mass_damping("finger", 7.5);
+    ExplicitOptions o;
+    o.end_time = 0.05;
+    o.progress = false;
+    o.print_summary = false;
+    o.history_interval = 1e-3;
+    ExplicitSolver solver(model, o);
+    double worst = 0;
+    solver.observer = [&](const ExplicitSolver& s) {
+        for (int n : root) worst = std::max(worst, (s.state().x[n] - pos(mesh.nodes[n], s.time())).norm());
+    };
+    solver.run();
+    EXPECT_LT(worst, 1e-12);
+}

@@ -1,0 +1,217 @@
+// Verification of the modal solver (lib/modal) against closed forms and a dense eigensolver:
+// Euler-Bernoulli cantilever frequencies (hex8 and tet10), rigid-body modes of a free block, the
+// refusal of an unsupported model, eigen-residuals, MAC, and coupled DOFs (thesis Sec 2.4.2 screws).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <numbers>
+
+#include <Eigen/Eigenvalues>
+
+#include "assembly/model.hpp"
+#include "box_tet10.hpp"
+#include "core/error.hpp"
+#include "io/hdf5.hpp"
+#include "modal/modal.hpp"
+
+using namespace fem;
+
+namespace {
+
+const ElasticMaterial kSteel = ElasticMaterial::make("steel", 210e9, 0.3, 7800.0);
+constexpr double kL = 1.0, kH = 0.05;  // cantilever length and square section side (L/h = 20)
+
+// Euler-Bernoulli cantilever: f_n = (beta_n L)^2 / (2 pi L^2) sqrt(E I / (rho A)).
+double euler_bernoulli(double beta_l) {
+    const double EI = kSteel.youngs_modulus * std::pow(kH, 4) / 12, rhoA = kSteel.density * kH * kH;
+    return beta_l * beta_l / (2 * std::numbers::pi * kL * kL) * std::sqrt(EI / rhoA);
+}
+
+modal::ModalResult cantilever(const Mesh& mesh, int modes) {
+    Model model(mesh);
+    model.add_solid_part("box", kSteel);
+    model.fix_node_set("x0");
+    return modal::solve_modes(model.assemble(), {.modes = modes});
+}
+
+// Tolerances, set before the runs: a 3D solid cantilever with L/h = 20 differs from Euler-Bernoulli
+// by shear and rotary inertia (Timoshenko: about -0.15 % for the first bending pair, -1 % for the
+// second) and the clamped face's blocked Poisson contraction (stiffer, a few 0.1 %); the mesh adds
+// its own stiffening. Allowed: 1 % on the first pair, 2.5 % on the second.
+void expect_bending(const modal::ModalResult& r) {
+    const double f1 = euler_bernoulli(1.8751040687), f2 = euler_bernoulli(4.6940911330);
+    for (int k : {0, 1}) EXPECT_NEAR(r.frequencies_hz(k) / f1, 1.0, 0.01) << "mode " << k + 1;
+    for (int k : {2, 3}) EXPECT_NEAR(r.frequencies_hz(k) / f2, 1.0, 0.025) << "mode " << k + 1;
+    for (int k = 0; k < r.residuals.size(); ++k) EXPECT_LT(r.residuals(k), 1e-8) << "mode " << k + 1;
+}
+
+}  // namespace
+
+TEST(Modal, Hex8CantileverMatchesEulerBernoulli) {
+    const auto r = cantilever(box_hex8(kL, kH, kH, 40, 2, 2), 4);
+    std::printf("hex8 f/f_EB: %.5f %.5f %.5f %.5f\n", r.frequencies_hz(0) / euler_bernoulli(1.8751040687),
+                r.frequencies_hz(1) / euler_bernoulli(1.8751040687), r.frequencies_hz(2) / euler_bernoulli(4.6940911330),
+                r.frequencies_hz(3) / euler_bernoulli(4.6940911330));
+    expect_bending(r);
+    // Square section: the two bending directions are degenerate.
+    EXPECT_NEAR(r.frequencies_hz(1) / r.frequencies_hz(0), 1.0, 1e-6);
+}
+
+TEST(Modal, Tet10CantileverMatchesEulerBernoulli) {
+    const auto r = cantilever(test::box_tet10(kL, kH, kH, 20, 2, 2), 4);
+    std::printf("tet10 f/f_EB: %.5f %.5f %.5f %.5f\n", r.frequencies_hz(0) / euler_bernoulli(1.8751040687),
+                r.frequencies_hz(1) / euler_bernoulli(1.8751040687), r.frequencies_hz(2) / euler_bernoulli(4.6940911330),
+                r.frequencies_hz(3) / euler_bernoulli(4.6940911330));
+    expect_bending(r);
+}
+
+TEST(Modal, AgreesWithDenseGeneralizedEigensolver) {
+    const Mesh mesh = box_hex8(0.4, 0.1, 0.05, 4, 2, 1);
+    Model model(mesh);
+    model.add_solid_part("box", kSteel, {.mass = solid::MassKind::Lumped});
+    model.fix_node_set("x0");
+    const AssembledSystem sys = model.assemble();
+    // Both factorizations (CHOLMOD when built with it, Eigen's SimplicialLDLT) against a dense solver.
+    const auto r = modal::solve_modes(sys, {.modes = 8});
+    const auto r_simplicial = modal::solve_modes(sys, {.modes = 8, .use_cholmod = false});
+    EXPECT_EQ(r_simplicial.factorization, "Eigen SimplicialLDLT");
+    const Eigen::MatrixXd K(Eigen::SparseMatrix<double>(sys.stiffness.selfadjointView<Eigen::Lower>()));
+    const Eigen::MatrixXd M(Eigen::SparseMatrix<double>(sys.mass.selfadjointView<Eigen::Lower>()));
+    Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> dense(K, M);
+    for (int k = 0; k < 8; ++k) {
+        EXPECT_NEAR(r.eigenvalues(k) / dense.eigenvalues()(k), 1.0, 1e-9) << "mode " << k + 1;
+        EXPECT_NEAR(r_simplicial.eigenvalues(k) / dense.eigenvalues()(k), 1.0, 1e-9) << "mode " << k + 1;
+    }
+    // Mass normalization and M-orthogonality.
+    const Eigen::MatrixXd G = r.shapes.transpose() * M * r.shapes;
+    EXPECT_LT((G - Eigen::MatrixXd::Identity(8, 8)).cwiseAbs().maxCoeff(), 1e-9);
+}
+
+TEST(Modal, FreeBlockHasExactlySixRigidBodyModes) {
+    const Mesh mesh = box_hex8(0.2, 0.1, 0.05, 4, 2, 2);
+    Model model(mesh);
+    model.add_solid_part("box", kSteel);
+    const AssembledSystem sys = model.assemble();
+    // Without a shift the singular K is refused with a message that says what to do.
+    try {
+        modal::solve_modes(sys, {.modes = 8});
+        FAIL() << "a free model was accepted without a shift";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("rigid-body modes"), std::string::npos) << e.what();
+    }
+    const auto r = modal::solve_modes(sys, {.modes = 8, .shift_hz = -10.0});
+    const double f7 = r.frequencies_hz(6);
+    EXPECT_GT(f7, 1000.0);  // the first elastic mode of a 0.2 m steel block is kHz
+    for (int k = 0; k < 6; ++k) EXPECT_LT(std::abs(r.frequencies_hz(k)), 1e-3 * f7) << "mode " << k + 1;
+    for (int k = 0; k < 8; ++k) EXPECT_LT(r.residuals(k), 1e-8) << "mode " << k + 1;
+}
+
+TEST(Modal, MacOfASetWithItselfIsTheIdentity) {
+    const Mesh mesh = box_hex8(kL, kH, 2 * kH, 20, 1, 2);
+    Model model(mesh);
+    model.add_solid_part("box", kSteel);
+    model.fix_node_set("x0");
+    const AssembledSystem sys = model.assemble();
+    const auto r = modal::solve_modes(sys, {.modes = 6});
+    const Eigen::MatrixXd m = modal::mac(r.shapes, r.shapes, sys.mass);
+    EXPECT_LT((m - Eigen::MatrixXd::Identity(6, 6)).cwiseAbs().maxCoeff(), 1e-9);
+    const Eigen::MatrixXd plain = modal::mac(r.shapes, r.shapes);
+    for (int k = 0; k < 6; ++k) EXPECT_NEAR(plain(k, k), 1.0, 1e-12);
+    // Pairing a permuted, sign-flipped copy recovers the permutation.
+    Eigen::MatrixXd b(r.shapes.rows(), 6);
+    const int perm[6] = {2, 0, 1, 5, 3, 4};
+    for (int k = 0; k < 6; ++k) b.col(k) = -r.shapes.col(perm[k]);
+    const auto pairs = modal::pair_modes(modal::mac(r.shapes, b, sys.mass), 0.9);
+    ASSERT_EQ(pairs.size(), 6u);
+    for (const auto& p : pairs) EXPECT_EQ(perm[p.b], p.a);
+}
+
+TEST(Modal, CoupledCoincidentBoxesEqualTheSingleBox) {
+    // The thesis's assembled portal frame joins parts by coupled DOFs at the screws (Sec 2.4.2). Two
+    // half-beams with duplicate nodes at x = L/2, coupled in all translations, are the one beam.
+    const auto single = cantilever(box_hex8(kL, kH, kH, 20, 2, 2), 6);
+    auto two_halves = [&](bool all_screws) {
+        Mesh mesh = box_hex8(kL / 2, kH, kH, 10, 2, 2, "box");
+        Mesh right = box_hex8(kL / 2, kH, kH, 10, 2, 2, "box");
+        right.translate(Vec3(kL / 2, 0, 0));
+        const std::vector<int> a = mesh.node_set("x1");
+        const int offset = mesh.node_count();
+        std::vector<int> b;
+        for (int n : right.node_set("x0")) b.push_back(n + offset);
+        const std::vector<int> clamp = mesh.node_set("x0");
+        mesh.append(right);
+        Model model(mesh);
+        model.add_solid_part("box", kSteel);
+        model.fix_nodes(clamp);
+        // "Missing screws": leave the top row of interface nodes uncoupled.
+        std::vector<int> coupled;
+        for (int n : a)
+            if (all_screws || mesh.nodes[n].z() < kH * 0.99) coupled.push_back(n);
+        model.couple_coincident(coupled, b);
+        return modal::solve_modes(model.assemble(), {.modes = 6});
+    };
+    const auto joined = two_halves(true);
+    for (int k = 0; k < 6; ++k) EXPECT_NEAR(joined.frequencies_hz(k) / single.frequencies_hz(k), 1.0, 1e-9) << "mode " << k + 1;
+    // Removing constraints cannot raise an eigenvalue (Rayleigh's principle), and a loose joint at
+    // mid-span must lower the bending frequencies noticeably.
+    const auto loose = two_halves(false);
+    for (int k = 0; k < 6; ++k) EXPECT_LE(loose.frequencies_hz(k), joined.frequencies_hz(k) * (1 + 1e-9)) << "mode " << k + 1;
+    EXPECT_LT(loose.frequencies_hz(0), 0.99 * joined.frequencies_hz(0));
+}
+
+TEST(Modal, WritesCsvHdf5AndVtu) {
+    const Mesh mesh = box_hex8(0.4, 0.1, 0.05, 4, 2, 1);
+    Model model(mesh);
+    model.add_solid_part("box", kSteel);
+    model.fix_node_set("x0");
+    const AssembledSystem sys = model.assemble();
+    const auto r = modal::solve_modes(sys, {.modes = 3});
+    const auto dir = std::filesystem::temp_directory_path() / "fem_test_modal_output";
+    std::filesystem::remove_all(dir);
+    modal::write_results(dir, mesh, sys, r);
+    EXPECT_TRUE(std::filesystem::exists(dir / "frequencies.csv"));
+    EXPECT_TRUE(std::filesystem::exists(dir / "modes.pvd"));
+    EXPECT_TRUE(std::filesystem::exists(dir / "modes_0002.vtu"));
+    const Eigen::MatrixXd f = io::read_h5_matrix(dir / "modes.h5", "frequencies_hz");
+    ASSERT_EQ(f.size(), 3);
+    EXPECT_DOUBLE_EQ(f(2), r.frequencies_hz(2));
+    const Eigen::MatrixXd u = io::read_h5_matrix(dir / "modes.h5", "mode_1/translation");
+    EXPECT_EQ(u.rows(), mesh.node_count());
+    EXPECT_EQ(u.cols(), 3);
+    std::filesystem::remove_all(dir);
+}
+
+TEST(Modal, RefusesBadRequests) {
+    const Mesh mesh = box_hex8(0.4, 0.1, 0.05, 2, 1, 1);
+    Model model(mesh);
+    model.add_solid_part("box", kSteel);
+    model.fix_node_set("x0");
+    const AssembledSystem sys = model.assemble();
+    EXPECT_THROW(modal::solve_modes(sys, {.modes = 0}), InputError);
+    EXPECT_THROW(modal::solve_modes(sys, {.modes = sys.size()}), InputError);
+}
+
+TEST(Modal, SimplySupportedShellPlateMatchesKirchhoff) {
+    // The 6-DOF path: a 1 m square steel plate, 10 mm thick, of MITC4 shells (element/shell_mitc4),
+    // simply supported (translations fixed on the four edges, rotations free). Kirchhoff:
+    // omega_mn = pi^2 ((m/a)^2 + (n/b)^2) sqrt(D / (rho t)), D = E t^3 / (12 (1 - nu^2)).
+    // Tolerance, set before the run: 2 % for (1,1) and 3 % for the degenerate (1,2)/(2,1) pair on a
+    // 20 x 20 mesh (MITC4 converges as h^2; thin plate a/t = 100, so shear deformation < 0.1 %).
+    const double a = 1.0, t = 0.01;
+    const Mesh mesh = rectangle_quads(a, a, 20, 20);
+    Model model(mesh);
+    model.add_shell_part("plate", t, kSteel);
+    for (const char* edge : {"x0", "x1", "y0", "y1"}) model.fix_node_set(edge, kTranslations);
+    const auto r = modal::solve_modes(model.assemble(), {.modes = 3});
+    const double nu = kSteel.poissons_ratio;
+    const double D = kSteel.youngs_modulus * t * t * t / (12 * (1 - nu * nu));
+    const double base = std::numbers::pi * std::numbers::pi / (a * a) * std::sqrt(D / (kSteel.density * t)) / (2 * std::numbers::pi);
+    std::printf("shell plate f/f_Kirchhoff: %.5f %.5f %.5f\n", r.frequencies_hz(0) / (2 * base), r.frequencies_hz(1) / (5 * base),
+                r.frequencies_hz(2) / (5 * base));
+    EXPECT_NEAR(r.frequencies_hz(0) / (2 * base), 1.0, 0.02);
+    EXPECT_NEAR(r.frequencies_hz(1) / (5 * base), 1.0, 0.03);
+    EXPECT_NEAR(r.frequencies_hz(2) / (5 * base), 1.0, 0.03);
+    for (int k = 0; k < 3; ++k) EXPECT_LT(r.residuals(k), 1e-8);
+}
