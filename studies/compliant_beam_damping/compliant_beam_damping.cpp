@@ -7,13 +7,18 @@
 //   Table 2-10               zeta 0.0055, omega 16.33 rad/s, alpha_cr 30 1/s, alpha 0.165 1/s
 //   App E                    Dunkerley's estimate omega_1 = 16.33 rad/s (and the exact beam frequency)
 //   App D, Fig D-2, D-4      log decrement and half-power bandwidth on signals of known damping
-// Analytic part: the FE tip responses of the beam (Figs 2-17..2-19) slot in as Step 5 once the
-// explicit solver exists (the critical-alpha search below then takes the FE model as its response).
+//   Figs 2-17..2-19, Table 2-9 the FE beam (lib/explicit, corotational beams + tip mass): its omega_1, the
+//                            critical-alpha search and the log-decrement route on it, and its free
+//                            vibration with the identified alpha against the SDOF model (Step 5)
 //
 // Run:  make compliant_beam_damping      (or build/bin/compliant_beam_damping --figures figures)
-// Out:  build/results/compliant_beam_damping/{checks.json, *.dat, table-2-7.md, table-2-10.md},
-//       figures/{fig-2-14, fig-2-18, fig-d-2, fig-d-4}.svg, figures/table-2-7.md, figures/table-2-10.md
+// Out:  build/results/compliant_beam_damping/{checks.json, runs.json, *.dat, table-2-7.md, table-2-10.md,
+//       fig-2-17.md, fig-2-19/beam.pvd (ParaView series of the 100-element run)},
+//       figures/{fig-2-14, fig-2-17, fig-2-18, fig-2-19, fig-d-2, fig-d-4}.svg and the tables.
+// Cost: ~50 s of CPU (17 explicit runs; the 100-element one is ~40 % of it).
 #include <algorithm>
+#include <chrono>
+#include <filesystem>
 #include <cmath>
 #include <fmt/format.h>
 #include <numbers>
@@ -21,6 +26,7 @@
 #include <vector>
 
 #include "check/study.hpp"
+#include "core/error.hpp"
 #include "core/units.hpp"
 #include "damping/beam_frequency.hpp"
 #include "damping/half_power.hpp"
@@ -28,6 +34,7 @@
 #include "damping/log_decrement.hpp"
 #include "damping/rayleigh.hpp"
 #include "damping/sdof.hpp"
+#include "explicit/solver.hpp"
 #include "io/atomic_file.hpp"
 #include "io/table.hpp"
 
@@ -64,6 +71,124 @@ std::vector<double> linspace(double a, double b, int n) {
     std::vector<double> v(n);
     for (int i = 0; i < n; ++i) v[i] = a + (b - a) * i / (n - 1);
     return v;
+}
+
+
+// ---- Step 5 helpers: the FE beam of Tables 2-8/2-9 ---------------------------------------------------
+
+// One explicit run of the wire: `elements` corotational Euler-Bernoulli beams (Table 2-9: 100) plus
+// the tip mass (Mass 166), clamped root, 0.003 N at the tip for 0.2 s (Table 2-8), mass-proportional
+// damping alpha on both parts (*DAMPING_PART_MASS, Eq 2-39).
+struct BeamRun {
+    SampledSignal tip;          // downward tip deflection (mm), on a uniform 1 ms grid from t = 0
+    RunSummary summary;
+    std::vector<double> snapshot_times;
+    std::vector<std::vector<Vec3>> snapshots;  // node positions (m) at snapshot_times
+};
+
+struct BeamRunOptions {
+    int elements = 20;
+    double alpha = 0.0;
+    double end_time = 1.0;
+    std::string name;
+    std::vector<double> snapshot_times;  // node positions recorded at the first sample at or after each
+    std::filesystem::path pvd_path;      // deformed states for ParaView (empty: none)
+    double vtu_interval = 0.02;
+};
+
+constexpr double kSampleInterval = 1e-3;  // s: tip history (twice the camera's 500 frames/s)
+
+BeamRun run_beam(const BeamData& b, const BeamRunOptions& o) {
+    Mesh mesh = line_beam2(Vec3(0, 0, 0), Vec3(b.length, 0, 0), o.elements, "beam");
+    const auto steel = ElasticMaterial::make("steel", b.youngs_modulus, 0.3, b.density);
+    ExplicitModel model(mesh);
+    model.add_beams("beam", steel, {beam::Section::circular(b.diameter)});
+    const int tip = mesh.node_set("end")[0];
+    model.add_point_mass("tip mass", tip, b.tip_mass);
+    model.fix(mesh.node_set("start"), Dofs::all());
+    model.add_nodal_force({tip}, Vec3(0, -b.load, 0), Curve::pulse(0.0, b.load_time));
+    model.set_mass_damping("beam", o.alpha);
+    model.set_mass_damping("tip mass", o.alpha);
+    ExplicitOptions opt;
+    opt.end_time = o.end_time;
+    opt.history_nodes = {{"tip", tip}};
+    opt.history_interval = kSampleInterval;
+    opt.name = o.name;
+    opt.print_summary = false;
+    if (!o.pvd_path.empty()) {
+        opt.pvd_path = o.pvd_path;
+        opt.vtu_interval = o.vtu_interval;
+    }
+    ExplicitSolver solver(model, opt);
+    BeamRun r;
+    r.snapshot_times = o.snapshot_times;
+    std::size_t next = 0;
+    solver.observer = [&](const ExplicitSolver& s) {
+        while (next < r.snapshot_times.size() && s.time() >= r.snapshot_times[next] - 1e-9) {
+            r.snapshots.push_back(s.state().x);
+            ++next;
+        }
+    };
+    r.summary = solver.run();
+    // The history samples fall on the first step at or after each multiple of the interval (within one
+    // step, < 4 us); interpolate them linearly onto the exact grid the damping tools expect.
+    const History& h = solver.history();
+    std::vector<double> t, y;
+    for (std::size_t i = 0; i < h.time.size(); ++i) {
+        t.push_back(h.time[i]);
+        y.push_back(-h.nodes[0].displacement[i].y() / units::mm);
+    }
+    r.tip.t0 = 0.0;
+    r.tip.dt = kSampleInterval;
+    std::size_t j = 0;
+    for (double tk = 0.0; tk <= t.back() + 1e-12; tk = r.tip.x.size() * kSampleInterval) {
+        while (j + 2 < t.size() && t[j + 1] < tk) ++j;
+        double v;
+        if (tk <= t.front()) v = t.front() > 0 ? tk / t.front() * y.front() : y.front();  // from rest at 0
+        else {
+            const double w = (tk - t[j]) / (t[j + 1] - t[j]);
+            v = y[j] + w * (y[j + 1] - y[j]);
+        }
+        r.tip.x.push_back(v);
+    }
+    return r;
+}
+
+// Second root of the cantilever-with-tip-mass frequency equation
+//   1 + cos b cosh b + mu b (cos b sinh b - sin b cosh b) = 0,  mu = M / (rho A L)
+// (the equation whose first root lib/damping solves); bisection on [4, 5] (bare cantilever: 4.694).
+double second_eigenvalue(double mu) {
+    auto f = [mu](double b) {
+        return 1 + std::cos(b) * std::cosh(b) + mu * b * (std::cos(b) * std::sinh(b) - std::sin(b) * std::cosh(b));
+    };
+    double lo = 4.0, hi = 5.0;
+    if (f(lo) * f(hi) > 0) throw SolverError("second_eigenvalue: no sign change on [4, 5]");
+    while (hi - lo > 1e-12) (f(lo) * f(0.5 * (lo + hi)) <= 0 ? hi : lo) = 0.5 * (lo + hi);
+    return 0.5 * (lo + hi);
+}
+
+// Centred moving average over `window` seconds (rounded to an odd number of samples). A boxcar of
+// one period T2 of the second bending mode removes that mode (its transfer function sin(w T/2)/(w T/2)
+// vanishes at w = 2 pi / T2) and multiplies the first mode, a damped sinusoid, by a constant complex
+// factor: extrema ratios and spacings, hence the log decrement and omega_d, are unchanged. The ends
+// (half a window) are dropped: the result starts at s.t0 + half window.
+SampledSignal moving_average(const SampledSignal& s, double window) {
+    const int half = std::max(1, static_cast<int>(std::lround(window / s.dt / 2)));
+    SampledSignal out{s.t0 + half * s.dt, s.dt, {}};
+    for (std::size_t i = half; i + half < s.size(); ++i) {
+        double sum = 0;
+        for (std::size_t k = i - half; k <= i + half; ++k) sum += s.x[k];
+        out.x.push_back(sum / (2 * half + 1));
+    }
+    return out;
+}
+
+// Damped frequency from the spacing of consecutive extrema (half a damped period each) after t_start:
+// works on records too short for two whole cycles (the 100-element run).
+double omega_d_from_extrema(const SampledSignal& s, double t_start) {
+    const auto ex = find_extrema(s, 0.0, t_start);
+    if (ex.size() < 3) throw SolverError("omega_d_from_extrema: fewer than three extrema");
+    return pi * static_cast<double>(ex.size() - 1) / (ex.back().t - ex.front().t);
 }
 
 }  // namespace
@@ -263,11 +388,220 @@ int main(int argc, char** argv) {
         }
 
         // ------------------------------------------------------------------------------------------
-        // Step 5. FE tip response (Figs 2-17..2-19, Table 2-9): 100 beam elements + the tip mass,
-        // 0.003 N at the tip for 0.2 s, 4 s of free vibration. [To be added with the explicit solver:
-        // omega_1 of the FE model, find_critical_alpha / estimate_critical_alpha with the FE run as the
-        // ResponseFunction (t_start = load end), the FE tip response at alpha = 0.165 against the SDOF
-        // curve of Step 2 (fig-2-18-sdof.dat).]
+        // Step 5. The FE beam (Table 2-9: 100 Beam 161 elements + the Mass 166 tip mass; Table 2-8 load
+        // case: 0.003 N at the tip for 0.2 s, then free vibration) and the identification of Sec 2.5.2 on
+        // it (Figs 2-17..2-19). Cost: the beam's explicit step is L_e / c (c = sqrt(E / rho) = 5125 m/s),
+        // 0.7 us at 100 elements, so 4 s of the thesis's mesh is 5.7 M steps (minutes). The several-alpha
+        // work (guess, bisection, Fig 2-18) therefore runs on 20 elements (step and cost per step both
+        // 5x smaller); one short 100-element run checks that omega_1 moves by < 0.5 % between the meshes
+        // and gives the Fig 2-19 snapshots and the PVD series.
+        //
+        // What the tip record contains: the 0.2 s pulse leaves mode 1 vibrating at ~2 x the static
+        // deflection (95 mm, Step 2's note; the measured release was 55.5 mm, so decay and frequency are
+        // compared, not amplitudes) and the second bending mode at ~2 % of that. Mass-proportional damping
+        // decays every mode at the same rate alpha / 2, so that ripple never dies out; it jitters the peaks
+        // by ~2 % each, which would spoil a log decrement of delta = 0.035 per cycle. The tip signal is
+        // therefore averaged over one period of mode 2 (moving_average) before the log decrement.
+        {
+            const int coarse = 20, fine = 100;
+            const double mu = beam.tip_mass / beam_mass;
+            const double beta1 = cantilever_tip_mass_eigenvalue(mu), beta2 = second_eigenvalue(mu);
+            const double omega_2 = omega_exact * std::pow(beta2 / beta1, 2);  // Euler-Bernoulli, mode 2
+            const double t2 = 2 * pi / omega_2;
+            const double t_free = beam.load_time + t2;  // analyse from one filter window after release
+            auto run_and_record = [&](const BeamRunOptions& o) {
+                BeamRun r = run_beam(beam, o);
+                study.record_run({o.name, r.summary.to_json()});
+                return r;
+            };
+
+            // (a) Fig 2-17, initial guess, and Sec 2.5.2 step 2: log decrement of the FE response at a
+            // guess alpha_g gives zeta, and alpha_cr = alpha_g / zeta (exact for one mode: zeta = alpha /
+            // 2 omega_1). The same run gives the FE model's omega_1 = omega_d / sqrt(1 - zeta^2).
+            const double alpha_guess = 3.0;
+            const BeamRun guess = run_and_record({.elements = coarse, .alpha = alpha_guess, .end_time = 2.0,
+                                         .name = fmt::format("fe{}-alpha-{}-guess", coarse, alpha_guess)});
+            const auto guess_f = moving_average(guess.tip, t2);
+            const auto ld_guess = log_decrement(guess_f, {.t_start = t_free});
+            const double omega_fe = ld_guess.omega_n;
+            const double alpha_cr_route = critical_alpha_from_log_decrement(alpha_guess, ld_guess.zeta);
+            study.check("fe/omega-1/20-elements", omega_fe,
+                        fmt::format("omega_n = omega_d / sqrt(1 - zeta^2) of the tip response at alpha_g = {} "
+                                    "({} cycles after release); exact Euler-Bernoulli {:.4f}, Dunkerley {:.4f}; "
+                                    "mode 2 (beam theory) {:.1f} rad/s, filtered out over T2 = {:.4f} s",
+                                    alpha_guess, ld_guess.cycles, omega_exact, dk.omega_1, omega_2, t2));
+            study.check("table-2-10/fe/alpha-cr-log-decrement", alpha_cr_route,
+                        fmt::format("alpha_g = {}: zeta = {:.5f} (least squares {:.5f}) over {} cycles; 2 omega_1(FE) "
+                                    "= {:.3f}", alpha_guess, ld_guess.zeta, ld_guess.zeta_fit, ld_guess.cycles, 2 * omega_fe));
+
+            // (b) Sec 2.5.2 step 1 on the FE model: bisection between oscillating and non-oscillating
+            // responses. Detector: after the release (t_start = 0.2 s) the tip returns to 0; an overshoot
+            // beyond 0.1 % of the largest post-release deviation (one crossing of that band) counts as
+            // oscillation -- the visibility threshold of Step 4's hypothesis. For one mode the consecutive
+            // extrema ratio is e^(-delta/2), so this finds delta = 2 ln 1000, zeta = 0.9103, i.e.
+            // alpha = 0.9103 x 2 omega_1 ~ 29.8, not 2 omega_1 = 32.7 (which needs an infinitely fine
+            // detector). 0.9 s records: the overshoot peaks half a damped period (0.47 s at zeta 0.91)
+            // after the outward peak that follows the release.
+            const double band = 1e-3;
+            int search_runs = 0;
+            const ResponseFunction fe_beam = [&](double alpha) {
+                ++search_runs;
+                const BeamRun r = run_and_record({.elements = coarse, .alpha = alpha, .end_time = 0.9,
+                                         .name = fmt::format("fe{}-search-{}-alpha-{:.4f}", coarse, search_runs, alpha)});
+                return r.tip;
+            };
+            CriticalAlphaOptions fe_search{.alpha_lo = 25.0, .alpha_hi = 35.0, .rel_tolerance = 5e-3, .max_evaluations = 14};
+            fe_search.oscillation.t_start = beam.load_time;
+            fe_search.oscillation.final_value = 0.0;
+            fe_search.oscillation.relative_band = band;
+            fe_search.oscillation.min_crossings = 1;
+            const auto cr_fe = find_critical_alpha(fe_beam, fe_search);
+            const double zeta_band = zeta_from_log_decrement(2 * std::log(1 / band));
+            study.check("table-2-10/fe/alpha-cr-search", cr_fe.alpha_cr,
+                        fmt::format("{} FE runs, bracket [{:.3f}, {:.3f}]; one-mode value with this detector: "
+                                    "zeta(delta = 2 ln 1000) x 2 omega_1(FE) = {:.4f} x {:.3f} = {:.3f}; the strict "
+                                    "criterion (any oscillation) gives 2 omega_1 = {:.3f}",
+                                    cr_fe.evaluations, cr_fe.alpha_oscillating, cr_fe.alpha_non_oscillating, zeta_band,
+                                    2 * omega_fe, zeta_band * 2 * omega_fe, 2 * omega_fe));
+            study.check("table-2-10/fe/alpha-cr-search-zeta", cr_fe.alpha_cr / (2 * omega_fe),
+                        fmt::format("alpha_cr(search) / 2 omega_1(FE) = {:.3f} / {:.3f}", cr_fe.alpha_cr, 2 * omega_fe));
+
+            // (c) Step 3: alpha = zeta x alpha_cr with the measured zeta = 0.0055.
+            const double alpha_ours = zeta_beam * alpha_cr_route;
+            study.check("table-2-10/fe/alpha", alpha_ours,
+                        fmt::format("0.0055 x alpha_cr(log-decrement route) = 0.0055 x {:.3f}; with alpha_cr(search) "
+                                    "{:.3f}: {:.4f}; with the thesis's 30: 0.165",
+                                    alpha_cr_route, cr_fe.alpha_cr, zeta_beam * cr_fe.alpha_cr));
+
+            // Fig 2-17's second curve: the response at alpha_cr of the search (and at 2 omega_1).
+            const BeamRun at_cr = run_and_record({.elements = coarse, .alpha = cr_fe.alpha_cr, .end_time = 1.2,
+                                         .name = fmt::format("fe{}-alpha-{:.3f}-critical-search", coarse, cr_fe.alpha_cr)});
+            const BeamRun at_2w = run_and_record({.elements = coarse, .alpha = alpha_cr_route, .end_time = 1.2,
+                                         .name = fmt::format("fe{}-alpha-{:.3f}-critical-log-decrement", coarse, alpha_cr_route)});
+            {
+                io::Table t;
+                const std::size_t n = at_cr.tip.size();
+                std::vector<double> time(n), g(n);
+                for (std::size_t i = 0; i < n; ++i) time[i] = at_cr.tip.time(i), g[i] = guess.tip.x[i];
+                t.add("t", time).add("x_guess", g).add("x_alpha_cr_search", at_cr.tip.x)
+                    .add("x_alpha_cr_2omega", std::vector<double>(at_2w.tip.x.begin(), at_2w.tip.x.begin() + n));
+                io::write_dat(out / "fig-2-17.dat", t);
+                io::write_text_file(out / "fig-2-17.txt",
+                                    fmt::format("guess alpha {:.1f}, alpha_cr search {:.2f}, alpha_cr log decrement {:.2f} 1/s\n",
+                                                alpha_guess, cr_fe.alpha_cr, alpha_cr_route));
+                // Smallest overshoot, as a fraction of the largest post-release deviation, at each curve.
+                std::ostringstream md;
+                md << "| Fig 2-17 run | alpha (1/s) | overshoot / largest deviation after release |\n|---|---|---|\n";
+                for (const auto* r : {&guess, &at_cr, &at_2w}) {
+                    double xmax = 0, xmin = 0;
+                    for (std::size_t i = 0; i < r->tip.size(); ++i)
+                        if (r->tip.time(i) >= beam.load_time) xmax = std::max(xmax, r->tip.x[i]), xmin = std::min(xmin, r->tip.x[i]);
+                    md << fmt::format("| {} | {:.3f} | {:.2e} |\n", r->summary.name,
+                                      r == &guess ? alpha_guess : (r == &at_cr ? cr_fe.alpha_cr : alpha_cr_route), std::max(0.0, -xmin) / xmax);
+                }
+                md << "\nBisection trials on the 20-element FE beam (overshoot band 0.1 %, one crossing = oscillation):\n\n"
+                      "| alpha | crossings | oscillating |\n|---|---|---|\n";
+                for (const auto& tr : cr_fe.trials)
+                    md << fmt::format("| {:.4f} | {} | {} |\n", tr.alpha, tr.crossings, tr.oscillating ? "yes" : "no");
+                study.write_markdown("fig-2-17.md", md.str());
+            }
+
+            // (d) Fig 2-18: the FE tip response with the identified alpha against the SDOF model of
+            // Table 2-7: log decrement and frequency of the (filtered) FE record after the release. The
+            // same with the thesis's alpha = 0.165, which damps the FE beam at 0.165 / 2 omega_1.
+            const BeamRun ours = run_and_record({.elements = coarse, .alpha = alpha_ours, .end_time = beam.total_time,
+                                        .name = fmt::format("fe{}-alpha-{:.4f}-identified", coarse, alpha_ours)});
+            const BeamRun thesis_alpha = run_and_record({.elements = coarse, .alpha = zeta_beam * alpha_cr_thesis, .end_time = beam.total_time,
+                                                .name = fmt::format("fe{}-alpha-0.165-thesis", coarse)});
+            const auto ld_ours = log_decrement(moving_average(ours.tip, t2), {.t_start = t_free});
+            // Diagnostic: the same alpha at a tenth of the load (tip amplitude ~10 mm instead of ~95 mm),
+            // where the tip deflection is linear in the modal amplitude; 2 s (4.5 cycles) suffice.
+            BeamData small_load = beam;
+            small_load.load = beam.load / 10;
+            const BeamRun small = [&] {
+                BeamRun r = run_beam(small_load, {.elements = coarse, .alpha = alpha_ours, .end_time = 2.0,
+                                                  .name = fmt::format("fe{}-alpha-{:.4f}-load-0.0003N", coarse, alpha_ours)});
+                study.record_run({r.summary.name, r.summary.to_json()});
+                return r;
+            }();
+            const auto ld_small = log_decrement(moving_average(small.tip, t2), {.t_start = t_free});
+            study.check("fig-2-18/fe/zeta-small-amplitude", ld_small.zeta,
+                        fmt::format("0.0003 N: {} cycles, amplitude {:.1f} mm, omega_d {:.4f} rad/s; expected alpha / 2 "
+                                    "omega_1(FE) = {:.5f}", ld_small.cycles, ld_small.amplitudes.front() / 2, ld_small.omega_d,
+                                    alpha_ours / (2 * omega_fe)));
+            const auto ld_thesis = log_decrement(moving_average(thesis_alpha.tip, t2), {.t_start = t_free});
+            study.check("fig-2-18/fe/zeta", ld_ours.zeta,
+                        fmt::format("alpha = {:.4f}: {} cycles, delta = {:.5f}, least squares zeta = {:.5f}; expected "
+                                    "alpha / 2 omega_1(FE) = {:.5f}. The deficit is geometric nonlinearity: the tip swings "
+                                    "to {:.0f} mm (a quarter of L); the same run at a tenth of the load gives zeta = {:.5f} "
+                                    "(check fig-2-18/fe/zeta-small-amplitude)",
+                                    alpha_ours, ld_ours.cycles, ld_ours.delta, ld_ours.zeta_fit, alpha_ours / (2 * omega_fe),
+                                    ld_ours.amplitudes.front() / 2, ld_small.zeta));
+            study.check("fig-2-18/fe/omega-d", ld_ours.omega_d,
+                        fmt::format("SDOF model of Table 2-7: omega_d = {:.4f} rad/s", ld.omega_d));
+            study.check("fig-2-18/fe/zeta-thesis-alpha", ld_thesis.zeta,
+                        fmt::format("alpha = 0.165: {} cycles, least squares zeta = {:.5f}; expected 0.165 / 2 omega_1(FE) = {:.5f}",
+                                    ld_thesis.cycles, ld_thesis.zeta_fit, 0.165 / (2 * omega_fe)));
+
+            // (e) The thesis's mesh: 100 elements at the identified alpha, 0.85 s (the load and 1.7 periods
+            // of free vibration): omega_d from the extrema spacing, the Fig 2-19 snapshots and a PVD series.
+            std::vector<double> snap_times;
+            for (int k = 0; k <= 8; ++k) snap_times.push_back(0.1 * k);
+            const BeamRun fine_run = run_and_record({.elements = fine, .alpha = alpha_ours, .end_time = 0.85,
+                                            .name = fmt::format("fe{}-alpha-{:.4f}-identified", fine, alpha_ours),
+                                            .snapshot_times = snap_times, .pvd_path = out / "fig-2-19" / "beam.pvd"});
+            const double omega_fine = omega_d_from_extrema(moving_average(fine_run.tip, t2), t_free);
+            // The 20-element run measured over the same window (the frequency rises slightly with the
+            // amplitude, so a longer window would compare different amplitudes).
+            SampledSignal ours_window = ours.tip;
+            ours_window.x.resize(fine_run.tip.size());
+            const double omega_coarse = omega_d_from_extrema(moving_average(ours_window, t2), t_free);
+            study.check("fe/omega-1/100-elements", omega_fine,
+                        fmt::format("omega_d from the spacing of the extrema of the 100-element tip response ({:.2f} s "
+                                    "after release); the same measure on the 20-element run over the same window: {:.4f}",
+                                    fine_run.tip.time(fine_run.tip.size() - 1) - beam.load_time, omega_coarse));
+            const double mesh_change = omega_coarse / omega_fine - 1;
+            study.trend_holds("fe/omega-1/mesh", std::abs(mesh_change) < 5e-3,
+                              fmt::format("omega_d(20 elements) / omega_d(100 elements) - 1 = {:+.3f} %", 100 * mesh_change));
+            {
+                io::Table t;
+                std::vector<double> time(ours.tip.size()), sdof_x(ours.tip.size());
+                for (std::size_t i = 0; i < ours.tip.size(); ++i) time[i] = ours.tip.time(i);
+                t.add("t", time).add("x_fe20_identified", ours.tip.x).add("x_fe20_thesis_alpha", thesis_alpha.tip.x);
+                io::write_dat(out / "fig-2-18-fe.dat", t);
+                io::Table f;
+                std::vector<double> tf100(fine_run.tip.size());
+                for (std::size_t i = 0; i < tf100.size(); ++i) tf100[i] = fine_run.tip.time(i);
+                f.add("t", tf100).add("x_fe100_identified", fine_run.tip.x);
+                io::write_dat(out / "fig-2-18-fe100.dat", f);
+                // Fig 2-18's SDOF curve is the release at 55.5 mm from t = 0; the FE release is at 0.2 s
+                // from ~95 mm. For the overlay the SDOF curve is started at the FE's first free maximum,
+                // with the FE's amplitude there (shape, frequency and decay are compared, not amplitude).
+                const auto first = find_extrema(moving_average(ours.tip, t2), 0.0, t_free);
+                double t_peak = 0, x_peak = 0;
+                for (const auto& e : first)
+                    if (e.is_maximum) { t_peak = e.t; x_peak = e.x; break; }
+                io::Table s;
+                std::vector<double> ts, xs;
+                const Sdof sdof_overlay{zeta_beam, omega_beam, x_peak, 0.0};
+                for (double tk = t_peak; tk <= beam.total_time; tk += kSampleInterval)
+                    ts.push_back(tk), xs.push_back(sdof_overlay.displacement(tk - t_peak));
+                s.add("t", ts).add("x_sdof", xs);
+                io::write_dat(out / "fig-2-18-sdof-overlay.dat", s);
+                io::write_text_file(out / "fig-2-18.txt",
+                                    fmt::format("FE (20 el.) alpha {:.4f}: zeta {:.5f}, omega_d {:.3f};  SDOF: zeta 0.0055, omega_d {:.3f}\n",
+                                                alpha_ours, ld_ours.zeta, ld_ours.omega_d, ld.omega_d));
+                // Fig 2-19: node positions (mm) at the snapshot times, one x/y column pair per time.
+                io::Table shapes;
+                for (std::size_t k = 0; k < fine_run.snapshots.size(); ++k) {
+                    std::vector<double> xs2, ys2;
+                    for (const auto& p : fine_run.snapshots[k]) xs2.push_back(p.x() / units::mm), ys2.push_back(p.y() / units::mm);
+                    shapes.add(fmt::format("x_t{:.1f}", fine_run.snapshot_times[k]), xs2)
+                        .add(fmt::format("y_t{:.1f}", fine_run.snapshot_times[k]), ys2);
+                }
+                io::write_dat(out / "fig-2-19.dat", shapes);
+            }
+        }
 
         // ------------------------------------------------------------------------------------------
         // Step 6. Appendix D.1, Fig D-2: free responses for several damping ratios, and the log

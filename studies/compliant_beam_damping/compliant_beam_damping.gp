@@ -22,15 +22,56 @@ unset arrow
 unset label
 set autoscale xy
 
-# Fig 2-18 (SDOF part): the tip response of the Table 2-7 model; the FE curve joins it later.
-set output figures.'/fig-2-18.'.ext
-set title 'Fig 2-18  Tip response of the SDOF model of Table 2-7 (zeta 0.0055, omega_n 16.33 rad/s)'
+# Fig 2-17: FE tip response (20 elements) at the initial-guess alpha and at the critical alphas.
+set output figures.'/fig-2-17.'.ext
+info = system('cat '.results.'/fig-2-17.txt')
+set title "Fig 2-17  FE tip response under different alpha (20 beam elements)\n".info
 set xlabel 'time (s)'
+set ylabel 'tip deflection (mm, downward)'
+set arrow 1 from first 0.2, graph 0 to first 0.2, graph 1 nohead dt 2 lc rgb '#888888'
+set label 1 'load released' at first 0.21, graph 0.95
+plot results.'/fig-2-17.dat' using 1:2 with lines lw 2 lc rgb '#1f77b4' title 'initial guess alpha = 3 1/s', \
+     '' using 1:3 with lines lw 2 lc rgb '#d62728' title 'alpha_cr from the automated search (0.1 % overshoot)', \
+     '' using 1:4 with lines lw 2 dt 2 lc rgb '#000000' title 'alpha_cr = alpha_g / zeta (log decrement) = 2 omega_1'
+unset arrow
+unset label
+
+# Fig 2-18: FE tip response with the identified alpha against the SDOF model of Table 2-7 (top), and
+# the Table 2-7 model itself, damped and undamped, as fitted to the measurement (bottom).
+set terminal @term size 900,900 noenhanced font 'sans,12' background rgb 'white'
+set output figures.'/fig-2-18.'.ext
+set multiplot layout 2,1
+info = system('cat '.results.'/fig-2-18.txt')
+set title "Fig 2-18  Free vibration: FE beam vs the SDOF model of Table 2-7\n".info
+set xlabel 'time (s)'
+set ylabel 'tip deflection (mm, downward)'
+set yrange [-120:150]
+set key top right
+plot results.'/fig-2-18-fe.dat' using 1:2 with lines lw 1 lc rgb '#1f77b4' title 'FE, 20 elements, identified alpha', \
+     results.'/fig-2-18-fe100.dat' using 1:2 with lines lw 2 lc rgb '#2ca02c' title 'FE, 100 elements (Table 2-9), first 0.85 s', \
+     results.'/fig-2-18-fe.dat' using 1:3 with lines lw 1 dt 3 lc rgb '#ff7f0e' title 'FE, 20 elements, thesis alpha = 0.165', \
+     results.'/fig-2-18-sdof-overlay.dat' using 1:2 with lines lw 1 dt 2 lc rgb '#d62728' title 'SDOF (zeta 0.0055, 16.33 rad/s) from the first FE peak'
+set title 'Table 2-7 SDOF model of the measured tip response (release from rest at 55.5)'
 set ylabel 'tip displacement (mm, presumably)'
 set yrange [-60:80]
 plot results.'/fig-2-18-sdof.dat' using 1:3 with lines lw 1 lc rgb '#aaaaaa' title 'undamped: 55.5 s / (s^2 + 266.7)', \
      '' using 1:2 with lines lw 2 lc rgb '#1f77b4' title 'damped: (55.5 s + 9.969) / (s^2 + 0.1796 s + 266.7)'
+unset multiplot
 set autoscale y
+
+# Fig 2-19: deflected shapes of the 100-element beam (identified alpha) at t = 0, 0.1, ..., 0.8 s.
+set terminal @term size 900,520 noenhanced font 'sans,12' background rgb 'white'
+set output figures.'/fig-2-19.'.ext
+set title 'Fig 2-19  Snapshots of the compliant beam (100 elements): load on until 0.2 s, then free vibration'
+set xlabel 'x (mm)'
+set ylabel 'y (mm)'
+set key outside right
+set xrange [0:420]
+plot results.'/fig-2-19.dat' using 1:2 with lines lw 1 dt 2 lc rgb '#888888' title 't = 0 s', \
+     for [k=2:9] '' using (column(2*k-1)):(column(2*k)) with linespoints lw 2 pt 7 ps 0.3 \
+     title sprintf('t = %.1f s', 0.1*(k-1))
+set autoscale x
+set key inside
 
 # Fig D-2: free response for several damping ratios, and the log decrement on one of them.
 set terminal @term size 900,800 noenhanced font 'sans,12' background rgb 'white'
