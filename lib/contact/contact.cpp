@@ -1,0 +1,240 @@
+#include "contact/contact.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <set>
+
+#include <fmt/format.h>
+
+#include "core/error.hpp"
+
+namespace fem::contact {
+
+// One node-to-segment pass: the nodes of `slave` against the faces of `master`.
+struct ContactInterface::Pass {
+    const ContactSurface* slave = nullptr;
+    const ContactSurface* master = nullptr;
+    bool rigid = false;
+    CandidateList list;
+    std::vector<double> depth, lateral, size;  // per master segment: capture region (search.hpp), sqrt(area)
+    double turn_factor = 1.0;                   // f of the rebuild rule (search.hpp)
+    std::vector<int> master_nodes;      // every node the master faces use
+    std::vector<Vec3> slave_x;          // gathered slave positions
+    struct History {
+        Vec3 force = Vec3::Zero();      // elastic tangential force (friction spring)
+        int segment = -1;               // segment of the last cycle (-1: not in contact)
+    };
+    std::vector<History> history;       // per slave node
+
+    Pass(const ContactSurface& s, const ContactSurface& m, bool is_rigid, const ContactOptions& o)
+        : slave(&s), master(&m), rigid(is_rigid),
+          list(o.margin > 0 ? o.margin : 0.25 * m.mean_segment_size(), o.max_rebuild_interval) {
+        std::set<int> nodes;
+        for (const auto& seg : m.segments) {
+            const double h = std::sqrt(seg.area);
+            size.push_back(h);
+            // A node in contact lies within depth behind the face and edge_tolerance x h beside it.
+            depth.push_back(std::isfinite(seg.depth) ? seg.depth : h);
+            lateral.push_back(o.edge_tolerance * h);
+            if (h > 0) turn_factor = std::max(turn_factor, 1.0 + 2.0 * depth.back() / h);
+            for (int i = 0; i < seg.count; ++i) nodes.insert(seg.n[i]);
+        }
+        master_nodes.assign(nodes.begin(), nodes.end());
+        history.resize(s.nodes.size());
+        slave_x.resize(s.nodes.size());
+    }
+};
+
+ContactInterface::ContactInterface(std::string name, ContactSurface slave, ContactSurface master, ContactOptions o)
+    : name_(std::move(name)), opt_(o), slave_(std::make_unique<ContactSurface>(std::move(slave))),
+      master_(std::make_unique<ContactSurface>(std::move(master))) {
+    validate_options();
+    if (slave_->nodes.empty() || master_->segments.empty())
+        throw InputError(fmt::format("contact '{}': the slave side has no nodes or the master side no faces", name_));
+    if (slave_->rigid || master_->rigid)
+        throw InputError(fmt::format("contact '{}': use the RigidSurface constructor for a rigid master", name_));
+    passes_.push_back(std::make_unique<Pass>(*slave_, *master_, false, opt_));
+    if (opt_.two_way) {
+        if (master_->nodes.empty() || slave_->segments.empty())
+            throw InputError(fmt::format("contact '{}': two-way contact needs faces and nodes on both sides", name_));
+        passes_.push_back(std::make_unique<Pass>(*master_, *slave_, false, opt_));
+    }
+}
+
+ContactInterface::ContactInterface(std::string name, ContactSurface slave, RigidSurface master, ContactOptions o)
+    : name_(std::move(name)), opt_(o), slave_(std::make_unique<ContactSurface>(std::move(slave))),
+      rigid_(std::make_unique<RigidSurface>(std::move(master))) {
+    validate_options();
+    if (slave_->nodes.empty() || rigid_->surface.segments.empty())
+        throw InputError(fmt::format("contact '{}': the slave side has no nodes or the rigid master no faces", name_));
+    if (opt_.two_way)
+        throw InputError(fmt::format("contact '{}': two-way contact needs a deformable master (a rigid body's points "
+                                     "carry no mass)",
+                                     name_));
+    rigid_->surface.rigid = true;
+    passes_.push_back(std::make_unique<Pass>(*slave_, rigid_->surface, true, opt_));
+}
+
+void ContactInterface::validate_options() const {
+    opt_.friction.validate(fmt::format("contact '{}'", name_).c_str());
+    if (!(opt_.penalty_scale > 0.0) || !(opt_.edge_tolerance >= 0.0) || !(opt_.margin >= 0.0))
+        throw InputError(fmt::format("contact '{}': penalty_scale {} must be > 0, edge_tolerance {} and margin {} >= 0",
+                                     name_, opt_.penalty_scale, opt_.edge_tolerance, opt_.margin));
+}
+
+ContactInterface::~ContactInterface() = default;
+ContactInterface::ContactInterface(ContactInterface&&) noexcept = default;
+
+long ContactInterface::rebuilds() const { return passes_[0]->list.rebuilds(); }
+long ContactInterface::cycles() const { return passes_[0]->list.cycles(); }
+
+void ContactInterface::check(std::span<const Vec3> x) const {
+    auto bad = [&](const ContactSurface& s) {
+        for (int n : s.nodes)
+            if (n < 0 || n >= static_cast<int>(x.size())) return n;
+        for (const auto& seg : s.segments)
+            for (int i = 0; i < seg.count; ++i)
+                if (seg.n[i] < 0 || seg.n[i] >= static_cast<int>(x.size())) return seg.n[i];
+        return -1;
+    };
+    int n = bad(*slave_);
+    if (n < 0 && master_) n = bad(*master_);
+    if (n >= 0)
+        throw InputError(fmt::format("contact '{}': node {} is out of range (the model has {} nodes)", name_, n, x.size()));
+}
+
+void ContactInterface::evaluate(std::span<const Vec3> x, std::span<const Vec3> v, double t, double dt,
+                                std::span<Vec3> force) {
+    if (passes_[0]->list.cycles() == 0) check(x);
+    if (rigid_) rigid_->state(t, rigid_x_, rigid_v_);
+    stored_ = 0.0;
+    f_master_.setZero();
+    m_master_.setZero();
+    points_.clear();
+    double rigid_power = 0.0;
+    std::vector<Vec3> zero_v;
+    if (v.empty()) zero_v.assign(x.size(), Vec3::Zero());
+    std::span<const Vec3> vs = v.empty() ? std::span<const Vec3>(zero_v) : v;
+
+    for (std::size_t p = 0; p < passes_.size(); ++p) {
+        Pass& P = *passes_[p];
+        const auto& snodes = P.slave->nodes;
+        const auto& segs = P.master->segments;
+        std::span<const Vec3> xm = P.rigid ? std::span<const Vec3>(rigid_x_) : x;
+        std::span<const Vec3> vm = P.rigid ? std::span<const Vec3>(rigid_v_) : vs;
+        for (std::size_t i = 0; i < snodes.size(); ++i) P.slave_x[i] = x[snodes[i]];
+        const bool self = !P.rigid;  // a node never contacts a face it belongs to
+        P.list.update(P.slave_x, xm, segs, P.depth, P.lateral, P.master_nodes, P.turn_factor, [&](int i, int s) {
+            if (!self) return false;
+            const auto& seg = segs[s];
+            for (int k = 0; k < seg.count; ++k)
+                if (seg.n[k] == snodes[i]) return true;
+            return false;
+        });
+
+        for (std::size_t i = 0; i < snodes.size(); ++i) {
+            const int node = snodes[i];
+            const Vec3& xs = x[node];
+            // The admissible segment: the one of the last cycle while it stays admissible (contact
+            // persists across the edge region of two faces), else the nearest. A gap within
+            // round-off of zero is no penetration: a node on the plane of a coplanar side face
+            // (two bars end to end) must not be captured by it instead of the face it entered.
+            // Outside veto: a node in front of a face it projects onto (0 < gap < the candidate's
+            // depth) is outside the master body, however deep it lies behind another face whose
+            // edge tolerance it falls in (a finger beside a thick object, level with its faces).
+            auto& hist = P.history[i];
+            int best = -1;
+            Projection bp;
+            double nearest_front = std::numeric_limits<double>::infinity();
+            for (int s : P.list.candidates(static_cast<int>(i))) {
+                const auto& seg = segs[s];
+                const Projection pr = seg.count == 4
+                                          ? project_quad(xs, xm[seg.n[0]], xm[seg.n[1]], xm[seg.n[2]], xm[seg.n[3]])
+                                          : project_triangle(xs, xm[seg.n[0]], xm[seg.n[1]], xm[seg.n[2]]);
+                const double tiny = 1e-9 * P.size[s];
+                if (pr.gap > tiny && pr.tangential_offset <= tiny) nearest_front = std::min(nearest_front, pr.gap);
+                if (!(pr.gap < -tiny) || -pr.gap > P.depth[s] || pr.tangential_offset > opt_.edge_tolerance * P.size[s])
+                    continue;
+                const bool kept = s == hist.segment;
+                if (best < 0 || kept || (best != hist.segment && pr.distance < bp.distance)) {
+                    best = s;
+                    bp = pr;
+                }
+            }
+            if (best >= 0 && nearest_front < -bp.gap) best = -1;
+            if (best < 0) {
+                hist = {};  // separated: the friction spring relaxes
+                continue;
+            }
+            const auto& seg = segs[best];
+            const double k = opt_.penalty_scale * std::min(P.slave->node_stiffness[i], seg.stiffness);
+            const double fn = -k * bp.gap;  // Eq 2-30
+            Vec3 F = fn * bp.normal;        // on the slave node
+            ContactPoint cp{node, best, static_cast<int>(p), xs, bp.point, bp.normal, bp.gap, fn, Vec3::Zero(), false};
+            stored_ += 0.5 * k * bp.gap * bp.gap;
+            // Velocity of the master point under the node (shape-function interpolation).
+            Vec3 vmp = Vec3::Zero();
+            for (int a = 0; a < seg.count; ++a) vmp += bp.shape[a] * vm[seg.n[a]];
+            if (opt_.friction.active()) {
+                const Vec3 vr = vs[node] - vmp;
+                const Vec3 vt = vr - vr.dot(bp.normal) * bp.normal;
+                // A pair that changed segment keeps its spring force (transported onto the new
+                // tangent plane by the return map); a new contact starts unstretched.
+                const FrictionUpdate fr = coulomb_return_map(hist.force, bp.normal, vr * dt, vt.norm(), k, fn, opt_.friction);
+                hist.force = fr.force;
+                dissipated_ += fr.dissipation;
+                stored_ += fr.force.squaredNorm() / (2.0 * k);
+                F += fr.force;
+                cp.tangential_force = fr.force;
+                cp.slipping = fr.slipping;
+            }
+            hist.segment = best;
+            force[node] += F;
+            if (P.rigid) {
+                rigid_power += F.dot(vmp);
+            } else {
+                for (int a = 0; a < seg.count; ++a) force[seg.n[a]] -= bp.shape[a] * F;
+            }
+            // Resultant on the master side (pass 1 has the roles swapped: its slave is our master).
+            const Vec3 Fm = p == 0 ? Vec3(-F) : F;
+            const Vec3 at = p == 0 ? bp.point : xs;
+            f_master_ += Fm;
+            m_master_ += at.cross(Fm);
+            points_.push_back(cp);
+        }
+    }
+    if (rigid_) {
+        rigid_work_ += 0.5 * (rigid_power_ + rigid_power) * dt;  // trapezoidal rule
+        rigid_power_ = rigid_power;
+    }
+}
+
+double ContactInterface::stability_frequency_squared(std::span<const double> mass) const {
+    double w2 = 0.0;
+    for (const auto& P : passes_) {
+        double inv_master = 0.0;  // 1 / lightest master node (rigid: infinite mass)
+        if (!P->rigid)
+            for (int n : P->master_nodes)
+                if (n < static_cast<int>(mass.size()) && mass[n] > 0.0) inv_master = std::max(inv_master, 1.0 / mass[n]);
+        for (std::size_t i = 0; i < P->slave->nodes.size(); ++i) {
+            const int n = P->slave->nodes[i];
+            if (n >= static_cast<int>(mass.size()) || !(mass[n] > 0.0)) continue;
+            w2 = std::max(w2, opt_.penalty_scale * P->slave->node_stiffness[i] * (1.0 / mass[n] + inv_master));
+        }
+    }
+    return w2 * static_cast<double>(passes_.size());
+}
+
+Resultant resultant(std::span<const int> nodes, std::span<const Vec3> f, std::span<const Vec3> x, const Vec3& about) {
+    Resultant r;
+    for (int n : nodes) {
+        if (n < 0 || n >= static_cast<int>(f.size()) || n >= static_cast<int>(x.size()))
+            throw InputError(fmt::format("resultant: node {} out of range ({} nodes)", n, f.size()));
+        r.force += f[n];
+        r.moment += (x[n] - about).cross(f[n]);
+    }
+    return r;
+}
+
+}  // namespace fem::contact
