@@ -1,10 +1,18 @@
 #include "element/hex8_explicit.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include <fmt/format.h>
 
 #include "core/error.hpp"
+
+// The Lanes helpers below pass four-double vectors by value; they are internal (anonymous
+// namespace, inlined), the public functions take them by reference, so the psABI note about AVX
+// vector arguments does not concern any interface.
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic ignored "-Wpsabi"
+#endif
 
 namespace fem::hex8 {
 namespace {
@@ -52,6 +60,7 @@ Hex8Reference make_reference(const std::array<Vec3, 8>& X, const char* element_n
         }
         Vec3 hx = Vec3::Zero();
         for (int a = 0; a < 8; ++a) hx += h[a] * X[a];
+        r.hourglass_base[al] = hx;
         for (int a = 0; a < 8; ++a) r.gamma[al][a] = h[a] - hx.dot(r.B[a]) / r.volume;
     }
     double s = 0.0;
@@ -70,6 +79,7 @@ Hex8Material Hex8Material::from(const ElasticMaterial& m, double qm, double beta
     h.rayleigh_beta = beta;
     h.bulk = q;
     h.bulk_viscosity = bulk_on;
+    h.wave_speed = std::sqrt((h.lambda + 2.0 * h.mu) / h.density);
     return h;
 }
 
@@ -81,88 +91,331 @@ double von_mises(const Mat3& s) {
 
 void internal_force(const Hex8Reference& ref, const Hex8Material& mat, const std::array<Vec3, 8>& u,
                     const std::array<Vec3, 8>& v, double length, Hex8Result& out) {
+    double ua[3][8], va[3][8];
+    for (int a = 0; a < 8; ++a)
+        for (int i = 0; i < 3; ++i) {
+            ua[i][a] = u[a][i];
+            va[i][a] = v[a][i];
+        }
+    Hex8KernelResult r;
+    internal_force(pack(ref, mat), mat, ua, va, length, r);
+    out.jacobian = r.jacobian;
+    out.inverted = !(r.jacobian > 0.0);
+    if (out.inverted) return;
+    for (int a = 0; a < 8; ++a) out.force[a] = Vec3(r.f[0][a], r.f[1][a], r.f[2][a]);
+    out.strain_energy = r.strain_energy;
+    out.hourglass_energy = r.hourglass_energy;
+    out.viscous_power = r.viscous_power;
+    out.volumetric_strain_rate = r.volumetric_strain_rate;
+    out.von_mises = std::sqrt(r.von_mises_sq);
+    // Elastic Cauchy stress sigma = P F^T / J = (mu (F F^T - I) + lambda ln J I) / J, with
+    // F F^T - I = H + H^T + H H^T (no cancellation at small strain).
+    Mat3 H;
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) H(i, j) = r.H[i][j];
+    const Mat3 b = H + H.transpose() + H * H.transpose();
+    out.cauchy = (mat.mu * b + mat.lambda * r.ln_j * Mat3::Identity()) / r.jacobian;
+}
+
+// --- the per-cycle kernel -------------------------------------------------------------------------
+
+namespace {
+// h_alpha at the nodes: xi eta, eta zeta, zeta xi, xi eta zeta (entries +-1).
+constexpr std::array<std::array<double, 8>, 4> hourglass_vectors() {
+    std::array<std::array<double, 8>, 4> h{};
+    for (int a = 0; a < 8; ++a) {
+        h[0][a] = kS[a][0] * kS[a][1];
+        h[1][a] = kS[a][1] * kS[a][2];
+        h[2][a] = kS[a][2] * kS[a][0];
+        h[3][a] = kS[a][0] * kS[a][1] * kS[a][2];
+    }
+    return h;
+}
+constexpr auto kH = hourglass_vectors();
+}  // namespace
+
+Hex8Packed pack(const Hex8Reference& ref, const Hex8Material& mat) {
+    Hex8Packed p;
+    for (int a = 0; a < 8; ++a)
+        for (int i = 0; i < 3; ++i) p.B[i][a] = ref.B[a][i];
+    for (int al = 0; al < 4; ++al)
+        for (int i = 0; i < 3; ++i) p.hx[al][i] = ref.hourglass_base[al][i];
+    p.volume = ref.volume;
+    p.hourglass_k = mat.hourglass_qm * 2.0 * mat.mu * ref.hourglass_norm / 8.0;
+    return p;
+}
+
+void pack_lane(const Hex8Packed& p, int l, Hex8Packed4& b) {
+    for (int i = 0; i < 3; ++i)
+        for (int a = 0; a < 8; ++a) b.B[i][a][l] = p.B[i][a];
+    for (int al = 0; al < 4; ++al)
+        for (int i = 0; i < 3; ++i) b.hx[al][i][l] = p.hx[al][i];
+    b.volume[l] = p.volume;
+    b.hourglass_k[l] = p.hourglass_k;
+}
+
+namespace {
+// Lane-wise helpers: T = double (one element) or Lanes (four). Library functions without a vector
+// version are applied lane by lane.
+inline double select(bool m, double a, double b) { return m ? a : b; }
+template <class M>
+inline Lanes select(M m, Lanes a, Lanes b) {
+    return m ? a : b;
+}
+inline double log1p_lanes(double x) { return std::log1p(x); }
+inline Lanes log1p_lanes(const Lanes& x) {
+    Lanes r;
+    for (int l = 0; l < kLanes; ++l) r[l] = std::log1p(x[l]);
+    return r;
+}
+inline double sqrt_lanes(double x) { return std::sqrt(x); }
+inline Lanes sqrt_lanes(const Lanes& x) {
+    Lanes r;
+    for (int l = 0; l < kLanes; ++l) r[l] = std::sqrt(x[l]);
+    return r;
+}
+// Cube root where `need` (the others get 0: their value is not used).
+inline double cbrt_where(bool need, double x) { return need ? std::cbrt(x) : 0.0; }
+template <class M>
+inline Lanes cbrt_where(M need, const Lanes& x) {
+    Lanes r = {0.0, 0.0, 0.0, 0.0};
+    for (int l = 0; l < kLanes; ++l)
+        if (need[l]) r[l] = std::cbrt(x[l]);
+    return r;
+}
+
+template <class T>
+[[gnu::always_inline]] inline void kernel(const Hex8PackedT<T>& p, const Hex8Material& mat, const T (&u)[3][8], const T (&v)[3][8], double length,
+            Hex8KernelResultT<T>& out) {
     // Displacement gradient H = F - I from the displacements (not the positions): the strain, the
     // stored energy and the hourglass displacements keep full precision at small strain and far
-    // from the origin.
-    const double inv_v0 = 1.0 / ref.volume;
-    Mat3 H = Mat3::Zero(), Fdot = Mat3::Zero();
-    for (int a = 0; a < 8; ++a) {
-        H.noalias() += u[a] * ref.B[a].transpose();
-        Fdot.noalias() += v[a] * ref.B[a].transpose();
-    }
-    H *= inv_v0;
-    Fdot *= inv_v0;
-    const Mat3 F = Mat3::Identity() + H;
+    // from the origin. Fdot likewise from the velocities.
+    const T inv_v0 = 1.0 / p.volume;
+    T H[3][3], Fd[3][3];
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) {
+            T h = u[i][0] * p.B[j][0], fd = v[i][0] * p.B[j][0];
+            for (int a = 1; a < 8; ++a) {
+                h += u[i][a] * p.B[j][a];
+                fd += v[i][a] * p.B[j][a];
+            }
+            H[i][j] = h * inv_v0;
+            Fd[i][j] = fd * inv_v0;
+            out.H[i][j] = H[i][j];
+        }
     // J - 1 = det(I + H) - 1 = tr H + (tr^2 H - tr H^2)/2 + det H, without cancellation.
-    const double trH = H.trace();
-    const double jm1 = trH + 0.5 * (trH * trH - (H * H).trace()) + H.determinant();
-    const double J = 1.0 + jm1;
-    out.jacobian = J;
-    if (!(J > 0.0)) {
-        out.inverted = true;
-        return;
-    }
-    out.inverted = false;
-    const Mat3 Finv = F.inverse();
-    const Mat3 FinvT = Finv.transpose();
-    const double lnJ = std::log1p(jm1);
+    const T trH = H[0][0] + H[1][1] + H[2][2];
+    T trH2 = H[0][0] * H[0][0];
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j)
+            if (i + j > 0) trH2 += H[i][j] * H[j][i];
+    const T detH = H[0][0] * (H[1][1] * H[2][2] - H[1][2] * H[2][1]) - H[0][1] * (H[1][0] * H[2][2] - H[1][2] * H[2][0]) +
+                   H[0][2] * (H[1][0] * H[2][1] - H[1][1] * H[2][0]);
+    const T jm1 = trH + 0.5 * (trH * trH - trH2) + detH;
+    const T J = 1.0 + jm1;
+    out.jacobian = J;  // J <= 0: inverted; the caller discards the rest (NaNs are harmless)
+    T F[3][3];
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) F[i][j] = i == j ? H[i][j] + 1.0 : H[i][j];
+    // Cofactor matrix C of F: F^-T = C / J and J F^-T = C.
+    T C[3][3];
+    C[0][0] = F[1][1] * F[2][2] - F[1][2] * F[2][1];
+    C[0][1] = F[1][2] * F[2][0] - F[1][0] * F[2][2];
+    C[0][2] = F[1][0] * F[2][1] - F[1][1] * F[2][0];
+    C[1][0] = F[0][2] * F[2][1] - F[0][1] * F[2][2];
+    C[1][1] = F[0][0] * F[2][2] - F[0][2] * F[2][0];
+    C[1][2] = F[0][1] * F[2][0] - F[0][0] * F[2][1];
+    C[2][0] = F[0][1] * F[1][2] - F[0][2] * F[1][1];
+    C[2][1] = F[0][2] * F[1][0] - F[0][0] * F[1][2];
+    C[2][2] = F[0][0] * F[1][1] - F[0][1] * F[1][0];
+    const T inv_j = 1.0 / J;
+    const T lnJ = log1p_lanes(jm1);
+    out.ln_j = lnJ;
     const double mu = mat.mu, lambda = mat.lambda;
 
-    // Neo-Hookean first Piola-Kirchhoff stress and stored energy.
-    Mat3 P = mu * (F - FinvT) + (lambda * lnJ) * FinvT;
-    // W = mu/2 (I1 - 3 - 2 ln J) + lambda/2 ln^2 J with I1 - 3 = 2 tr H + |H|^2.
-    out.strain_energy =
-        ref.volume * (0.5 * mu * (2.0 * (trH - lnJ) + H.squaredNorm()) + 0.5 * lambda * lnJ * lnJ);
-    out.cauchy = (P * F.transpose()) / J;
-    out.von_mises = von_mises(out.cauchy);
-
-    // Viscous Cauchy stresses from the velocity gradient L = Fdot F^-1 (current configuration).
-    const Mat3 L = Fdot * Finv;
-    const double trD = L.trace();
-    out.volumetric_strain_rate = trD;
-    Mat3 sv = Mat3::Zero();
-    bool viscous = false;
-    if (mat.bulk_viscosity && trD < 0.0) {
-        // Table 2-1 / LS-DYNA bulk viscosity: q = rho l (C0 l eps_kk^2 - C1 c eps_kk), a pressure,
-        // with l the cube root of the current volume (LS-DYNA's choice for solids) unless given.
-        if (!(length > 0.0)) length = std::cbrt(J * ref.volume);
-        const double rho = mat.density / J;
-        const double c = std::sqrt((lambda + 2.0 * mu) / mat.density);
-        const double q = rho * length * (mat.bulk.quadratic * length * trD * trD - mat.bulk.linear * c * trD);
-        sv.diagonal().array() -= q;
-        viscous = true;
-    }
-    if (mat.rayleigh_beta > 0.0) {
-        // beta K v of Eq 2-39 as a viscous stress beta C : D (the tangent of the material at rest).
-        const Mat3 D = 0.5 * (L + L.transpose());
-        sv += mat.rayleigh_beta * (2.0 * mu * D);
-        sv.diagonal().array() += mat.rayleigh_beta * lambda * trD;
-        viscous = true;
-    }
-    if (viscous) {
-        const Mat3 D = 0.5 * (L + L.transpose());
-        out.viscous_power = J * ref.volume * (sv.cwiseProduct(D)).sum();
-        P.noalias() += J * sv * FinvT;
-    } else {
-        out.viscous_power = 0.0;
-    }
-
-    for (int a = 0; a < 8; ++a) out.force[a].noalias() = P * ref.B[a];
-
-    // Flanagan-Belytschko stiffness hourglass control (see the header).
-    const double k = mat.hourglass_qm * 2.0 * mu * ref.hourglass_norm / 8.0;
-    double e_hg = 0.0;
-    if (k > 0.0) {
-        for (int al = 0; al < 4; ++al) {
-            const auto& g = ref.gamma[al];
-            Vec3 q = Vec3::Zero();
-            for (int a = 0; a < 8; ++a) q += g[a] * u[a];  // = sum gamma x: gamma is orthogonal to constants
-            e_hg += q.squaredNorm();
-            const Vec3 kq = k * q;
-            for (int a = 0; a < 8; ++a) out.force[a] += g[a] * kq;
+    // Neo-Hookean first Piola-Kirchhoff stress P = mu (F - F^-T) + lambda ln J F^-T, stored energy.
+    T P[3][3];
+    const T llj = lambda * lnJ;
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) {
+            const T finvt = C[i][j] * inv_j;
+            P[i][j] = mu * (F[i][j] - finvt) + llj * finvt;
         }
+    T h2 = H[0][0] * H[0][0];
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j)
+            if (i + j > 0) h2 += H[i][j] * H[i][j];
+    // W = mu/2 (I1 - 3 - 2 ln J) + lambda/2 ln^2 J with I1 - 3 = 2 tr H + |H|^2.
+    out.strain_energy = p.volume * (0.5 * mu * (2.0 * (trH - lnJ) + h2) + 0.5 * lambda * lnJ * lnJ);
+    // Von Mises of the elastic Cauchy stress sigma = (mu (F F^T - I) + lambda ln J I) / J: only the
+    // deviator of b = F F^T - I = H + H^T + H H^T counts, so vm = mu / J vm(b).
+    {
+        T b[3][3];
+        for (int i = 0; i < 3; ++i)
+            for (int j = i; j < 3; ++j)
+                b[i][j] = H[i][j] + H[j][i] + H[i][0] * H[j][0] + H[i][1] * H[j][1] + H[i][2] * H[j][2];
+        const T d0 = b[0][0] - b[1][1], d1 = b[1][1] - b[2][2], d2 = b[2][2] - b[0][0];
+        const T sc = mu * inv_j;
+        out.von_mises_sq = sc * sc * (0.5 * (d0 * d0 + d1 * d1 + d2 * d2) +
+                                      3.0 * (b[0][1] * b[0][1] + b[1][2] * b[1][2] + b[0][2] * b[0][2]));
     }
+
+    // Viscous Cauchy stresses from the velocity gradient L = Fdot F^-1 = Fdot C^T / J.
+    T L[3][3];
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) L[i][j] = (Fd[i][0] * C[j][0] + Fd[i][1] * C[j][1] + Fd[i][2] * C[j][2]) * inv_j;
+    const T trD = L[0][0] + L[1][1] + L[2][2];
+    out.volumetric_strain_rate = trD;
+    const bool beta_on = mat.rayleigh_beta > 0.0;
+    T power{};
+    if (mat.bulk_viscosity || beta_on) {
+        T sv[3][3];
+        for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j) sv[i][j] = T{};
+        if (mat.bulk_viscosity) {
+            // Table 2-1 / LS-DYNA bulk viscosity, in compression only: q = rho l (C0 l eps_kk^2 -
+            // C1 c eps_kk), a pressure, with l the cube root of the current volume (LS-DYNA's choice
+            // for solids) unless given.
+            const auto compressing = trD < 0.0;
+            const T l = length > 0.0 ? T{} + length : cbrt_where(compressing, J * p.volume);
+            const T rho = mat.density / J;
+            // (wave_speed is set by Hex8Material::from; computed here for a hand-filled material)
+            const double c = mat.wave_speed > 0.0 ? mat.wave_speed : std::sqrt((lambda + 2.0 * mu) / mat.density);
+            const T q = rho * l * (mat.bulk.quadratic * l * trD * trD - mat.bulk.linear * c * trD);
+            const T qc = select(compressing, q, T{});
+            for (int i = 0; i < 3; ++i) sv[i][i] -= qc;
+        }
+        if (beta_on) {
+            // beta K v of Eq 2-39 as a viscous stress beta C : D (the tangent of the material at rest).
+            const double b2mu = mat.rayleigh_beta * 2.0 * mu;
+            for (int i = 0; i < 3; ++i)
+                for (int j = 0; j < 3; ++j) sv[i][j] += b2mu * (0.5 * (L[i][j] + L[j][i]));
+            for (int i = 0; i < 3; ++i) sv[i][i] += mat.rayleigh_beta * lambda * trD;
+        }
+        for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j) power += sv[i][j] * (0.5 * (L[i][j] + L[j][i]));
+        // P += J sv F^-T = sv C.
+        for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j) P[i][j] += sv[i][0] * C[0][j] + sv[i][1] * C[1][j] + sv[i][2] * C[2][j];
+    }
+    out.viscous_power = J * p.volume * power;
+
+    // Flanagan-Belytschko stiffness hourglass control, folded (see the header): kq_alpha = k q_alpha
+    // with q_alpha = sum_a h_alpha,a u_a - H hX_alpha; P -= (1/V0) sum_alpha kq_alpha (x) hX_alpha.
+    const T k = p.hourglass_k;
+    T kq[4][3];
+    T e_hg{};
+    for (int al = 0; al < 4; ++al)
+        for (int i = 0; i < 3; ++i) {
+            T sum = kH[al][0] > 0 ? u[i][0] : -u[i][0];
+            for (int a = 1; a < 8; ++a) sum = kH[al][a] > 0 ? sum + u[i][a] : sum - u[i][a];
+            const T q = sum - (H[i][0] * p.hx[al][0] + H[i][1] * p.hx[al][1] + H[i][2] * p.hx[al][2]);
+            e_hg += q * q;
+            kq[al][i] = k * q;
+        }
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j)
+            P[i][j] -= inv_v0 * (kq[0][i] * p.hx[0][j] + kq[1][i] * p.hx[1][j] + kq[2][i] * p.hx[2][j] +
+                                 kq[3][i] * p.hx[3][j]);
     out.hourglass_energy = 0.5 * k * e_hg;
+    for (int i = 0; i < 3; ++i)
+        for (int a = 0; a < 8; ++a) {
+            T g = kH[0][a] > 0 ? kq[0][i] : -kq[0][i];
+            for (int al = 1; al < 4; ++al) g = kH[al][a] > 0 ? g + kq[al][i] : g - kq[al][i];
+            out.f[i][a] = P[i][0] * p.B[0][a] + P[i][1] * p.B[1][a] + P[i][2] * p.B[2][a] + g;
+        }
+}
+
+template <class T>
+[[gnu::always_inline]] inline T volume_of(const T (&x)[3][8]) {
+    // x(xi) = c0 + c1 xi + c2 eta + c3 zeta + c4 xi eta + c5 eta zeta + c6 zeta xi + c7 xi eta zeta
+    // with c_k = (1/8) sum_a s_k,a x_a. det J = [x_xi, x_eta, x_zeta] (triple product) averaged over
+    // the natural cube (volume 8, <xi^2> = 1/3, odd moments 0): only the products whose monomials are
+    // even in every coordinate survive, and those with a repeated vector vanish, leaving
+    //   V = 8 ([c1,c2,c3] + ([c1,c4,c6] + [c4,c2,c5] + [c6,c5,c3]) / 3).
+    // With d_k = 8 c_k: V = ([d1,d2,d3] + ([d1,d4,d6] + [d4,d2,d5] + [d6,d5,d3]) / 3) / 64.
+    T d[7][3];
+    for (int i = 0; i < 3; ++i) {
+        const T* c = x[i];
+        d[1][i] = (c[1] - c[0]) + (c[2] - c[3]) + (c[5] - c[4]) + (c[6] - c[7]);  // s_xi
+        d[2][i] = (c[2] - c[1]) + (c[3] - c[0]) + (c[6] - c[5]) + (c[7] - c[4]);  // s_eta
+        d[3][i] = (c[4] - c[0]) + (c[5] - c[1]) + (c[6] - c[2]) + (c[7] - c[3]);  // s_zeta
+        d[4][i] = (c[0] - c[1]) + (c[2] - c[3]) + (c[4] - c[5]) + (c[6] - c[7]);  // s_xi s_eta
+        d[5][i] = (c[0] - c[4]) + (c[1] - c[5]) + (c[6] - c[2]) + (c[7] - c[3]);  // s_eta s_zeta
+        d[6][i] = (c[0] - c[4]) + (c[6] - c[2]) + (c[5] - c[1]) + (c[3] - c[7]);  // s_zeta s_xi
+    }
+    auto triple = [&](int a, int b, int c) {
+        return d[a][0] * (d[b][1] * d[c][2] - d[b][2] * d[c][1]) + d[a][1] * (d[b][2] * d[c][0] - d[b][0] * d[c][2]) +
+               d[a][2] * (d[b][0] * d[c][1] - d[b][1] * d[c][0]);
+    };
+    return (triple(1, 2, 3) + (triple(1, 4, 6) + triple(4, 2, 5) + triple(6, 5, 3)) / 3.0) / 64.0;
+}
+
+template <class T>
+[[gnu::always_inline]] inline T length_of(const T (&x)[3][8]) {
+    // Faces as fem::cfl::hexahedron_length: (a, b, c, d) -> area |(c - a) x (d - b)| / 2. The
+    // largest area comes from the largest squared norm: one square root.
+    static constexpr int faces[6][4] = {{0, 1, 2, 3}, {4, 5, 6, 7}, {0, 1, 5, 4},
+                                        {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}};
+    T largest{};
+    for (const auto& f : faces) {
+        T p[3], q[3];
+        for (int i = 0; i < 3; ++i) {
+            p[i] = x[i][f[2]] - x[i][f[0]];
+            q[i] = x[i][f[3]] - x[i][f[1]];
+        }
+        const T n0 = p[1] * q[2] - p[2] * q[1], n1 = p[2] * q[0] - p[0] * q[2], n2 = p[0] * q[1] - p[1] * q[0];
+        const T n = n0 * n0 + n1 * n1 + n2 * n2;
+        largest = select(n > largest, n, largest);
+    }
+    return volume_of(x) / (0.5 * sqrt_lanes(largest));
+}
+}  // namespace
+
+void internal_force(const Hex8Packed& p, const Hex8Material& mat, const double (&u)[3][8], const double (&v)[3][8],
+                    double length, Hex8KernelResult& out) {
+    kernel(p, mat, u, v, length, out);
+}
+
+// The four-element functions are compiled twice, for AVX2 and for baseline x86-64, and the loader
+// picks the one the processor supports (GCC function multi-versioning): AVX2 does a Lanes operation
+// in one instruction instead of two SSE2 ones, with three-operand forms that save the register
+// copies. FMA is deliberately not enabled, so no a * b + c is contracted and both versions give
+// the same bits as the one-element kernel.
+#if defined(__GNUC__) && defined(__x86_64__) && !defined(__AVX2__)
+#define FEM_HEX8_CLONES [[gnu::target_clones("avx2", "default")]]
+#else
+#define FEM_HEX8_CLONES
+#endif
+
+FEM_HEX8_CLONES
+void internal_force(const Hex8Packed4& p, const Hex8Material& mat, const Lanes (&u)[3][8], const Lanes (&v)[3][8],
+                    Hex8KernelResult4& out) {
+    kernel(p, mat, u, v, 0.0, out);
+}
+
+double exact_volume(const double (&x)[3][8]) { return volume_of(x); }
+double characteristic_length(const double (&x)[3][8]) { return length_of(x); }
+FEM_HEX8_CLONES
+void characteristic_length(const Lanes (&x)[3][8], Lanes& length) { length = length_of(x); }
+
+namespace {
+void to_arrays(const std::array<Vec3, 8>& x, double (&xa)[3][8]) {
+    for (int a = 0; a < 8; ++a)
+        for (int i = 0; i < 3; ++i) xa[i][a] = x[a][i];
+}
+}  // namespace
+
+double exact_volume(const std::array<Vec3, 8>& x) {
+    double xa[3][8];
+    to_arrays(x, xa);
+    return exact_volume(xa);
+}
+
+double characteristic_length(const std::array<Vec3, 8>& x) {
+    double xa[3][8];
+    to_arrays(x, xa);
+    return characteristic_length(xa);
 }
 
 }  // namespace fem::hex8

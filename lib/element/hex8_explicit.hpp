@@ -44,6 +44,7 @@ namespace fem::hex8 {
 struct Hex8Reference {
     std::array<Vec3, 8> B;         // integral of dN_a/dX over the reference volume [m^2]
     std::array<std::array<double, 8>, 4> gamma;  // hourglass shape vectors
+    std::array<Vec3, 4> hourglass_base;  // sum_a h_alpha,a X_a: gamma_alpha,a = h_alpha,a - hourglass_base . B_a / V0
     double volume = 0.0;           // V0
     double hourglass_norm = 0.0;   // sum_a |B_a|^2 / V0 [m]
 };
@@ -59,6 +60,7 @@ struct Hex8Material {
     double rayleigh_beta = 0.0;  // beta of Eq 2-39 [s]
     BulkViscosity bulk{};
     bool bulk_viscosity = true;
+    double wave_speed = 0.0;     // sqrt((lambda + 2 mu) / rho), set by from(): used by the bulk viscosity
     static Hex8Material from(const ElasticMaterial& m, double qm = 0.1, double beta = 0.0,
                              BulkViscosity q = {}, bool bulk_on = true);
 };
@@ -83,5 +85,87 @@ void internal_force(const Hex8Reference& ref, const Hex8Material& mat, const std
 
 /// Von Mises equivalent of a (symmetric) stress tensor.
 double von_mises(const Mat3& s);
+
+// --- The per-cycle kernel (what the explicit solver's Hex8Group calls) ---------------------------
+//
+// The same formulation as internal_force() above, organized for speed: plain fixed-size arrays
+// with the 8 nodes contiguous per component (x[i][a] = component i of node a), no allocation, the
+// hourglass control folded into the stress (below), von Mises kept squared (the sqrt is taken only
+// when a stress is output). Results equal internal_force()'s to round-off (tests/explicit).
+//
+// Hourglass folding: with gamma_alpha,a = h_alpha,a - (hX_alpha . B_a) / V0 and hX_alpha =
+// sum_a h_alpha,a X_a (Hex8Reference::hourglass_base),
+//   q_alpha = sum_a gamma_alpha,a u_a = sum_a h_alpha,a u_a - H hX_alpha              (H = F - I)
+//   sum_alpha gamma_alpha,a k q_alpha = sum_alpha h_alpha,a k q_alpha - (k/V0) (sum_alpha q_alpha (x) hX_alpha) B_a,
+// so the second part joins the stress term P B_a and h (entries +-1) needs no storage.
+
+/// Four elements processed together, one per lane (GCC/Clang vector extension). Each lane does
+/// exactly the scalar kernel's operations in the same order (element-wise IEEE arithmetic, no
+/// reassociation), so batching changes no bit (unless a -march with FMA lets the compiler contract
+/// a * b + c differently in the two versions: then round-off); without AVX the compiler splits a
+/// Lanes operation into two SSE2 operations. Batching elements, not nodes, needs no shuffles.
+/// Alignment: without AVX, GCC aligns this 32-byte type to 16 bytes only, while the AVX2 version of
+/// the kernel (see the .cpp) loads it with aligned moves. So every Lanes object handed to the kernel
+/// must be 32-byte aligned: the structs below are alignas(32) for T = Lanes, and callers declare
+/// their Lanes arrays alignas(32).
+using Lanes = double __attribute__((vector_size(32)));
+inline constexpr int kLanes = 4;
+inline constexpr int kLanesAlign = 32;
+
+/// Reference data in the kernel's layout: T = double for one element (304 bytes), T = Lanes for
+/// four (component i of node a of element lane l at B[i][a][l]).
+template <class T>
+struct alignas(sizeof(T)) Hex8PackedT {
+    T B[3][8];      // B[i][a] = component i of B_a [m^2]
+    T hx[4][3];     // hourglass_base[alpha][i] [m]
+    T volume;       // V0 [m^3]
+    T hourglass_k;  // stiffness k = QM 2 mu sum_a |B_a|^2 / (8 V0) [N/m]
+};
+using Hex8Packed = Hex8PackedT<double>;
+using Hex8Packed4 = Hex8PackedT<Lanes>;
+Hex8Packed pack(const Hex8Reference& ref, const Hex8Material& mat);
+/// Puts one element's data `p` into lane `lane` of a four-element block.
+void pack_lane(const Hex8Packed& p, int lane, Hex8Packed4& block);
+
+/// What the kernel returns (per element, or per lane).
+template <class T>
+struct alignas(sizeof(T)) Hex8KernelResultT {
+    T f[3][8];                 // internal forces f[i][a], hourglass included
+    T strain_energy;           // V0 W(F)
+    T hourglass_energy;
+    T viscous_power;           // as Hex8Result
+    T volumetric_strain_rate;  // tr D
+    T jacobian;                // det F; <= 0: inverted, the other outputs are meaningless
+    T von_mises_sq;            // square of the von Mises stress of the elastic Cauchy stress
+    T H[3][3];                 // displacement gradient F - I
+    T ln_j;                    // ln det F
+};
+using Hex8KernelResult = Hex8KernelResultT<double>;
+using Hex8KernelResult4 = Hex8KernelResultT<Lanes>;
+static_assert(alignof(Hex8Packed4) == kLanesAlign && alignof(Hex8KernelResult4) == kLanesAlign);
+
+/// Internal forces from the nodal displacements u[i][a] = x - X and velocities v[i][a]. `length`
+/// as in internal_force() (<= 0: cube root of the current volume J V0); the four-element version
+/// always uses the cube root.
+void internal_force(const Hex8Packed& p, const Hex8Material& mat, const double (&u)[3][8], const double (&v)[3][8],
+                    double length, Hex8KernelResult& out);
+void internal_force(const Hex8Packed4& p, const Hex8Material& mat, const Lanes (&u)[3][8], const Lanes (&v)[3][8],
+                    Hex8KernelResult4& out);
+
+/// Exact volume of the trilinear hexahedron with nodes x[i][a] (node order of internal_force).
+/// Closed form of the integral of det J over the natural cube (see the .cpp); equals the 2x2x2
+/// Gauss volume of fem::cfl::hexahedron_length and Flanagan-Belytschko's sum_a b_a . x_a / 3.
+double exact_volume(const double (&x)[3][8]);
+
+/// Table 2-1 characteristic length of the hexahedron, V_e / A_emax (largest face area as
+/// fem::cfl::hexahedron_length: half the norm of the cross product of the face diagonals), from
+/// the current nodes x[i][a]. Equals fem::cfl::hexahedron_length to round-off, at a fraction of
+/// its cost (no Gauss loop, one square root).
+double characteristic_length(const double (&x)[3][8]);
+void characteristic_length(const Lanes (&x)[3][8], Lanes& length);
+
+/// Convenience overloads on an array of points (tests).
+double exact_volume(const std::array<Vec3, 8>& x);
+double characteristic_length(const std::array<Vec3, 8>& x);
 
 }  // namespace fem::hex8

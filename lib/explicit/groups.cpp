@@ -38,8 +38,15 @@ Hex8Group::Hex8Group(const Mesh& mesh, int block, const ElasticMaterial& materia
         refs_.push_back(hex8::make_reference(X, name.c_str()));
         ref_dt_.push_back(cfl::critical_time_step(ElementShape::Hex8, X, material_));
     }
+    static_assert(par::kChunk % hex8::kLanes == 0, "chunks must hold whole blocks of elements");
+    packed_.resize((n + hex8::kLanes - 1) / hex8::kLanes);
+    for (int e = 0; e < static_cast<int>(packed_.size()) * hex8::kLanes; ++e)
+        hex8::pack_lane(hex8::pack(refs_[std::min(e, n - 1)], kernel_material_), e % hex8::kLanes,
+                        packed_[e / hex8::kLanes]);
     mass_scale_.assign(n, 1.0);
-    von_mises_.assign(n, 0.0);
+    sqrt_mass_scale_.assign(n, 1.0);
+    dt_wave_speed_ = cfl::wave_speed(ElementShape::Hex8, material_);
+    von_mises_sq_.assign(n, 0.0);
     dt_.assign(n, std::numeric_limits<double>::infinity());
     fe_.resize(static_cast<std::size_t>(n) * 8);
     // CSR node -> element slots, slots in increasing order (fixed summation order).
@@ -87,58 +94,90 @@ std::vector<double> Hex8Group::reference_time_steps() const {
 void Hex8Group::set_mass_scaling(std::vector<double> factor) {
     if (static_cast<int>(factor.size()) != size()) throw InputError("mass scaling: one factor per element needed");
     mass_scale_ = std::move(factor);
+    for (int e = 0; e < size(); ++e) sqrt_mass_scale_[e] = std::sqrt(mass_scale_[e]);
+}
+
+std::vector<double> Hex8Group::element_stress() const {
+    std::vector<double> vm(von_mises_sq_.size());
+    for (std::size_t e = 0; e < vm.size(); ++e) vm[e] = std::sqrt(von_mises_sq_[e]);
+    return vm;
 }
 
 GroupForceResult Hex8Group::internal_forces(NodalState& s, bool compute_dt) {
     const int n = size();
     struct Partial {
-        double ie = 0, hg = 0, visc = 0, vm = 0, dt = std::numeric_limits<double>::infinity();
+        double ie = 0, hg = 0, visc = 0, vm_sq = 0, dt = std::numeric_limits<double>::infinity();
         int dt_e = -1, bad = -1;
     };
     const int chunks = par::chunk_count(n);
     std::vector<Partial> part_res(chunks);
     const double beta = kernel_material_.rayleigh_beta;
-#pragma omp parallel for schedule(static) if (n >= par::kParallelMin)
+    const bool bulk_on = kernel_material_.bulk_viscosity;
+    const hex8::Hex8Material& kmat = kernel_material_;
+    const Vec3* xs = s.x.data();
+    const Vec3* Xs = s.X.data();
+    const Vec3* vs = s.v.data();
+    // Dynamic scheduling of the fixed chunks: a chunk's results (its Partial, its elements' slots of
+    // fe_) do not depend on which thread computes it, so the bits are the same on any number of
+    // threads, and a thread that the shared machine preempts does not hold the others up.
+#pragma omp parallel for schedule(dynamic, 1) if (n >= par::kParallelMin)
     for (int c = 0; c < chunks; ++c) {
         Partial p;
-        hex8::Hex8Result r;
-        std::array<Vec3, 8> x, u, v;
-        const auto [e0, e1] = par::chunk_range(c, n);
-        for (int e = e0; e < e1; ++e) {
-            const auto& cn = conn_[e];
-            for (int a = 0; a < 8; ++a) {
-                x[a] = s.x[cn[a]];
-                u[a] = x[a] - s.X[cn[a]];
-                v[a] = s.v[cn[a]];
-            }
-            hex8::internal_force(refs_[e], kernel_material_, u, v, 0.0, r);
-            Vec3* fe = &fe_[static_cast<std::size_t>(e) * 8];
-            if (r.inverted || !std::isfinite(r.strain_energy)) {
-                if (p.bad < 0) p.bad = e;
-                for (int a = 0; a < 8; ++a) fe[a].setZero();
-                continue;
-            }
-            for (int a = 0; a < 8; ++a) fe[a] = r.force[a];
-            p.ie += r.strain_energy;
-            p.hg += r.hourglass_energy;
-            p.visc += r.viscous_power;
-            von_mises_[e] = r.von_mises;
-            p.vm = std::max(p.vm, r.von_mises);
-            if (compute_dt) {
-                // Table 2-1 hexahedron on the current coordinates, with the bulk-viscosity Q term.
-                double dt = cfl::critical_time_step(ElementShape::Hex8, x, material_,
-                                                    kernel_material_.bulk_viscosity ? r.volumetric_strain_rate : 0.0,
-                                                    kernel_material_.bulk);
-                dt *= std::sqrt(mass_scale_[e]);  // dt ~ sqrt(rho)
-                if (beta > 0.0) {
-                    // Stiffness damping lowers the limit: dt <= (2/omega)(sqrt(1 + xi^2) - xi), xi = beta omega/2.
-                    const double xi = beta / dt;
-                    dt *= std::sqrt(1.0 + xi * xi) - xi;
+        // Blocks of kLanes elements, one per lane (the kernel does per lane exactly what it does for
+        // one element: the results do not depend on the blocking). Node a's component i of the
+        // element in lane l is at [i][a][l].
+        constexpr int W = hex8::kLanes;
+        hex8::Hex8KernelResult4 r;
+        alignas(hex8::kLanesAlign) hex8::Lanes x[3][8], u[3][8], v[3][8], length;  // see hex8::Lanes
+        const auto [e0, e1] = par::chunk_range(c, n);  // e0 is a multiple of W (kChunk is)
+        for (int eb = e0; eb < e1; eb += W) {
+            const int lanes = std::min(W, e1 - eb);
+            for (int l = 0; l < W; ++l) {
+                const auto& cn = conn_[eb + std::min(l, lanes - 1)];  // spare lanes repeat the last element
+                for (int a = 0; a < 8; ++a) {
+                    const Vec3& xa = xs[cn[a]];
+                    const Vec3& Xa = Xs[cn[a]];
+                    const Vec3& va = vs[cn[a]];
+                    for (int i = 0; i < 3; ++i) {
+                        x[i][a][l] = xa[i];
+                        u[i][a][l] = xa[i] - Xa[i];
+                        v[i][a][l] = va[i];
+                    }
                 }
-                dt_[e] = dt;
-                if (dt < p.dt) {
-                    p.dt = dt;
-                    p.dt_e = e;
+            }
+            hex8::internal_force(packed_[eb / W], kmat, u, v, r);
+            if (compute_dt) hex8::characteristic_length(x, length);
+            for (int l = 0; l < lanes; ++l) {
+                const int e = eb + l;
+                Vec3* fe = &fe_[static_cast<std::size_t>(e) * 8];
+                if (!(r.jacobian[l] > 0.0) || !std::isfinite(r.strain_energy[l])) {
+                    if (p.bad < 0) p.bad = e;
+                    for (int a = 0; a < 8; ++a) fe[a].setZero();
+                    continue;
+                }
+                for (int a = 0; a < 8; ++a) fe[a] = Vec3(r.f[0][a][l], r.f[1][a][l], r.f[2][a][l]);
+                p.ie += r.strain_energy[l];
+                p.hg += r.hourglass_energy[l];
+                p.visc += r.viscous_power[l];
+                von_mises_sq_[e] = r.von_mises_sq[l];
+                p.vm_sq = std::max(p.vm_sq, r.von_mises_sq[l]);
+                if (compute_dt) {
+                    // Table 2-1 hexahedron on the current coordinates, with the bulk-viscosity Q term:
+                    // fem::cfl::critical_time_step's formula with the kernel's cheaper exact V_e / A_emax
+                    // (equal to fem::cfl::hexahedron_length to round-off, tests/explicit).
+                    double dt = cfl::solid_time_step(length[l], dt_wave_speed_,
+                                                     bulk_on ? r.volumetric_strain_rate[l] : 0.0, kmat.bulk);
+                    dt *= sqrt_mass_scale_[e];  // dt ~ sqrt(rho)
+                    if (beta > 0.0) {
+                        // Stiffness damping lowers the limit: dt <= (2/omega)(sqrt(1 + xi^2) - xi), xi = beta omega/2.
+                        const double xi = beta / dt;
+                        dt *= std::sqrt(1.0 + xi * xi) - xi;
+                    }
+                    dt_[e] = dt;
+                    if (dt < p.dt) {
+                        p.dt = dt;
+                        p.dt_e = e;
+                    }
                 }
             }
         }
@@ -146,7 +185,7 @@ GroupForceResult Hex8Group::internal_forces(NodalState& s, bool compute_dt) {
     }
     // Gather: each node sums its element slots in a fixed order.
     const int nn = static_cast<int>(nodes_.size());
-#pragma omp parallel for schedule(static) if (n >= par::kParallelMin)
+#pragma omp parallel for schedule(dynamic, par::kChunk) if (n >= par::kParallelMin)
     for (int k = 0; k < nn; ++k) {
         Vec3 sum = Vec3::Zero();
         for (int j = node_offset_[k]; j < node_offset_[k + 1]; ++j) sum += fe_[node_slot_[j]];
@@ -157,7 +196,7 @@ GroupForceResult Hex8Group::internal_forces(NodalState& s, bool compute_dt) {
         out.internal_energy += p.ie;
         out.hourglass_energy += p.hg;
         out.viscous_power += p.visc;
-        out.max_von_mises = std::max(out.max_von_mises, p.vm);
+        out.max_von_mises = std::max(out.max_von_mises, std::sqrt(p.vm_sq));  // sqrt is monotone: max commutes
         if (p.bad >= 0 && out.bad_element < 0) out.bad_element = p.bad;
         if (p.dt < out.dt_min) {
             out.dt_min = p.dt;

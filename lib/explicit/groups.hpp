@@ -32,7 +32,7 @@ public:
     std::vector<double> reference_time_steps() const override;
     void set_mass_scaling(std::vector<double> factor) override;
     GroupForceResult internal_forces(NodalState& s, bool compute_dt) override;
-    std::vector<double> element_stress() const override { return von_mises_; }
+    std::vector<double> element_stress() const override;
 
     const ElasticMaterial& material() const { return material_; }
     const hex8::Hex8Reference& reference(int e) const { return refs_[e]; }
@@ -43,8 +43,13 @@ private:
     hex8::Hex8Material kernel_material_;
     std::vector<std::array<int, 8>> conn_;
     std::vector<hex8::Hex8Reference> refs_;
+    // The kernel's copy of refs_ (what each cycle streams), in blocks of hex8::kLanes elements;
+    // the lanes of the last block past the end repeat the last element (results discarded).
+    std::vector<hex8::Hex8Packed4> packed_;
     std::vector<double> mass_scale_;   // density factor per element (1 = unscaled)
-    std::vector<double> von_mises_;
+    std::vector<double> sqrt_mass_scale_;  // its square root (dt ~ sqrt(rho))
+    double dt_wave_speed_ = 0.0;       // Table 2-1 dilatational wave speed of the material
+    std::vector<double> von_mises_sq_; // squared von Mises stress per element (sqrt taken on output)
     std::vector<double> dt_;           // critical step per element at the last dt evaluation
     std::vector<double> ref_dt_;       // critical step per element on the reference geometry
     // Deterministic assembly: element forces go to fe_ (8 per element); each node then sums its

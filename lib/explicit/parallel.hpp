@@ -1,7 +1,9 @@
 #pragma once
 // Fixed partition of loops into chunks whose size does not depend on the number of threads: each
 // chunk is summed sequentially and the chunk sums are added in chunk order, so every reduction
-// gives the same bits on 1 or N threads (deterministic results, DESIGN.md).
+// gives the same bits on 1 or N threads (deterministic results, DESIGN.md). Which thread runs a
+// chunk does not matter, so chunks may also be scheduled dynamically (Hex8Group does: on a shared
+// machine a preempted thread then does not hold the others up).
 #include <algorithm>
 #include <utility>
 

@@ -1,0 +1,238 @@
+// The per-cycle hexahedron kernel (element/hex8_explicit.hpp, Hex8Packed path) against independent
+// references: its closed-form exact volume against the 2x2x2 Gauss volume, its V_e / A_emax against
+// fem::cfl::hexahedron_length (thesis Table 2-1), its forces/energies against a plain Eigen
+// transcription of the formulation (gamma vectors, no folding), the group's four-element blocks
+// against the one-element kernel, and the group's per-cycle critical step against
+// fem::cfl::critical_time_step on every element.
+//
+// Tolerances (set before running): the quantities are mathematically equal and differ only by the
+// order of the floating-point operations, so the relative differences are a few 1e-16 times the
+// conditioning of the sums; 1e-12 for geometry (sums of O(1) terms on warped but valid elements)
+// and 1e-10 for forces and energies at strains up to ~0.3 (terms cancel by up to ~1e3 in P B_a and
+// in the hourglass displacements). The blocks do per lane the one-element kernel's operations in the
+// same order, so they agree to the bit in this build; 1e-13 leaves room for a build that contracts
+// a * b + c into FMAs differently in the two versions (-march=native).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "element/critical_time_step.hpp"
+#include "element/hex8_explicit.hpp"
+#include "explicit/groups.hpp"
+#include "mesh/mesh.hpp"
+
+using namespace fem;
+
+namespace {
+const ElasticMaterial kRubber = ElasticMaterial::make("rubber", 5e6, 0.49, 1100);
+
+// A warped hexahedron: unit cube, every node moved randomly by up to `w`, then scaled, rotated and
+// placed far from the origin (round-off of absolute coordinates).
+std::array<Vec3, 8> warped_hex(std::mt19937& rng, double w, double scale, const Vec3& offset) {
+    std::uniform_real_distribution<double> u(-w, w);
+    const std::array<Vec3, 8> cube = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1, 1, 0), Vec3(0, 1, 0),
+                                      Vec3(0, 0, 1), Vec3(1, 0, 1), Vec3(1, 1, 1), Vec3(0, 1, 1)};
+    const Mat3 R = Eigen::AngleAxisd(0.7, Vec3(1, -2, 0.5).normalized()).toRotationMatrix();
+    std::array<Vec3, 8> X;
+    for (int a = 0; a < 8; ++a) X[a] = offset + scale * (R * (cube[a] + Vec3(u(rng), u(rng), u(rng))));
+    return X;
+}
+
+// The formulation of hex8_explicit.hpp written out directly with Eigen (gamma vectors, F^-1 from
+// Eigen, Cauchy stress through P F^T): the reference the kernel must reproduce to round-off.
+struct RefResult {
+    std::array<Vec3, 8> f;
+    double w = 0, hg = 0, visc = 0, trD = 0, vm = 0;
+};
+RefResult reference_kernel(const hex8::Hex8Reference& ref, const hex8::Hex8Material& mat,
+                           const std::array<Vec3, 8>& u, const std::array<Vec3, 8>& v) {
+    RefResult out;
+    Mat3 H = Mat3::Zero(), Fdot = Mat3::Zero();
+    for (int a = 0; a < 8; ++a) {
+        H += u[a] * ref.B[a].transpose() / ref.volume;
+        Fdot += v[a] * ref.B[a].transpose() / ref.volume;
+    }
+    const Mat3 F = Mat3::Identity() + H;
+    const double J = F.determinant(), lnJ = std::log(J), mu = mat.mu, la = mat.lambda;
+    const Mat3 FinvT = F.inverse().transpose();
+    Mat3 P = mu * (F - FinvT) + la * lnJ * FinvT;
+    out.w = ref.volume * (0.5 * mu * (F.squaredNorm() - 3.0) - mu * lnJ + 0.5 * la * lnJ * lnJ);
+    out.vm = hex8::von_mises(P * F.transpose() / J);
+    const Mat3 L = Fdot * F.inverse();
+    const Mat3 D = 0.5 * (L + L.transpose());
+    out.trD = L.trace();
+    Mat3 sv = Mat3::Zero();
+    if (mat.bulk_viscosity && out.trD < 0.0) {
+        const double l = std::cbrt(J * ref.volume), c = std::sqrt((la + 2 * mu) / mat.density);
+        const double q = mat.density / J * l * (mat.bulk.quadratic * l * out.trD * out.trD - mat.bulk.linear * c * out.trD);
+        sv -= q * Mat3::Identity();
+    }
+    if (mat.rayleigh_beta > 0.0) sv += mat.rayleigh_beta * (2 * mu * D + la * out.trD * Mat3::Identity());
+    out.visc = J * ref.volume * sv.cwiseProduct(D).sum();
+    P += J * sv * FinvT;
+    const double k = mat.hourglass_qm * 2.0 * mu * ref.hourglass_norm / 8.0;
+    for (int a = 0; a < 8; ++a) out.f[a] = P * ref.B[a];
+    for (int al = 0; al < 4; ++al) {
+        Vec3 q = Vec3::Zero();
+        for (int a = 0; a < 8; ++a) q += ref.gamma[al][a] * u[a];
+        out.hg += 0.5 * k * q.squaredNorm();
+        for (int a = 0; a < 8; ++a) out.f[a] += k * ref.gamma[al][a] * q;
+    }
+    return out;
+}
+}  // namespace
+
+TEST(Hex8FastKernel, ExactVolumeEqualsGaussVolumeOnWarpedElements) {
+    std::mt19937 rng(7);
+    for (int trial = 0; trial < 200; ++trial) {
+        const auto X = warped_hex(rng, 0.25, 0.01 + 0.001 * trial, Vec3(3.0, -2.0, 5.0));
+        const double gauss = hex8::make_reference(X).volume;  // sum of det J at the 2x2x2 Gauss points
+        EXPECT_NEAR(hex8::exact_volume(X), gauss, 1e-12 * gauss) << trial;
+    }
+    // A strongly warped (non-planar faces) element where det J varies a lot.
+    std::array<Vec3, 8> X = {Vec3(0, 0, 0), Vec3(2, 0, 0.3), Vec3(2.2, 1.5, -0.2), Vec3(0, 1, 0),
+                             Vec3(0.1, 0, 1), Vec3(1, 0.2, 1.4), Vec3(1.3, 1.1, 0.9), Vec3(-0.2, 1.2, 1.1)};
+    const double gauss = hex8::make_reference(X).volume;
+    EXPECT_NEAR(hex8::exact_volume(X), gauss, 1e-12 * gauss);
+}
+
+TEST(Hex8FastKernel, CharacteristicLengthEqualsTable21) {
+    std::mt19937 rng(11);
+    for (int trial = 0; trial < 200; ++trial) {
+        const auto X = warped_hex(rng, 0.3, 0.002 * (1 + trial), Vec3(-1.0, 4.0, 0.5));
+        const double expected = cfl::hexahedron_length(X);
+        EXPECT_NEAR(hex8::characteristic_length(X), expected, 1e-12 * expected) << trial;
+    }
+}
+
+TEST(Hex8FastKernel, ForcesAndEnergiesEqualTheDirectFormulation) {
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<double> g(-1.0, 1.0);
+    int compressing = 0;
+    for (int trial = 0; trial < 100; ++trial) {
+        const auto X = warped_hex(rng, 0.2, 0.01, Vec3(0.5, 0.2, -0.3));
+        const auto ref = hex8::make_reference(X);
+        // Damping and bulk viscosity on and off in turn.
+        const double beta = trial % 2 ? 1e-4 : 0.0;
+        const auto mat = hex8::Hex8Material::from(kRubber, 0.1, beta, {}, trial % 3 != 0);
+        Mat3 A;
+        for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j) A(i, j) = 0.3 * g(rng);
+        const Mat3 R = Eigen::AngleAxisd(0.1 * trial, Vec3(g(rng), g(rng), 1.0).normalized()).toRotationMatrix();
+        std::array<Vec3, 8> u, v;
+        for (int a = 0; a < 8; ++a) {
+            // Large rotation and stretch plus a non-linear (hourglass-exciting) part.
+            u[a] = R * (X[a] + A * (X[a] - X[0])) - X[a] + 0.002 * Vec3(g(rng), g(rng), g(rng));
+            v[a] = Vec3(g(rng), g(rng), g(rng)) + (trial % 4 - 1.5) * (X[a] - X[0]) / 0.01;
+        }
+        const RefResult e = reference_kernel(ref, mat, u, v);
+        hex8::Hex8Result r;
+        hex8::internal_force(ref, mat, u, v, 0.0, r);
+        ASSERT_FALSE(r.inverted) << trial;
+        compressing += r.volumetric_strain_rate < 0.0;
+        double fmax = 0.0;
+        for (const auto& f : e.f) fmax = std::max(fmax, f.norm());
+        for (int a = 0; a < 8; ++a) EXPECT_LT((r.force[a] - e.f[a]).norm(), 1e-10 * fmax) << trial << " node " << a;
+        EXPECT_NEAR(r.strain_energy, e.w, 1e-10 * std::abs(e.w)) << trial;
+        EXPECT_NEAR(r.hourglass_energy, e.hg, 1e-10 * e.hg) << trial;
+        EXPECT_NEAR(r.viscous_power, e.visc, 1e-10 * std::abs(e.visc) + 1e-300) << trial;
+        EXPECT_NEAR(r.volumetric_strain_rate, e.trD, 1e-10 * std::abs(e.trD)) << trial;
+        EXPECT_NEAR(r.von_mises, e.vm, 1e-10 * e.vm) << trial;
+    }
+    EXPECT_GT(compressing, 20);  // the bulk-viscosity branch was exercised
+    EXPECT_LT(compressing, 80);
+}
+
+// Hex8Group's per-cycle critical step (kernel V_e / A_emax) against fem::cfl::critical_time_step on
+// each element's current nodes, with bulk viscosity, mass scaling and stiffness damping.
+TEST(Hex8FastKernel, GroupTimeStepEqualsCriticalTimeStep) {
+    Mesh mesh = box_hex8(0.03, 0.02, 0.02, 3, 2, 2, "blk");
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<double> g(-1.0, 1.0);
+    for (auto& x : mesh.nodes) x += 0.0015 * Vec3(g(rng), g(rng), g(rng));
+    for (double beta : {0.0, 2e-7}) {
+        Hex8Options opt;
+        opt.rayleigh_beta = beta;
+        Hex8Group group(mesh, 0, kRubber, opt);
+        std::vector<double> scale(group.size());
+        for (auto& f : scale) f = 1.0 + 3.0 * (g(rng) + 1.0);
+        group.set_mass_scaling(scale);
+        NodalState s;
+        s.X = mesh.nodes;
+        for (const auto& X : mesh.nodes) s.x.push_back(X + 0.001 * Vec3(g(rng), g(rng), g(rng)));
+        for (const auto& X : mesh.nodes) s.v.push_back(Vec3(g(rng), g(rng), g(rng)) - 100.0 * (X - Vec3(0.015, 0.01, 0.01)));
+        s.f.assign(mesh.node_count(), Vec3::Zero());
+        const auto res = group.internal_forces(s, true);
+        const auto mat = hex8::Hex8Material::from(kRubber, opt.hourglass_qm, beta, opt.bulk, opt.bulk_viscosity);
+        double best = std::numeric_limits<double>::infinity();
+        int best_e = -1;
+        for (int e = 0; e < group.size(); ++e) {
+            std::array<Vec3, 8> x, u, v;
+            for (int a = 0; a < 8; ++a) {
+                const int nd = group.connectivity(e)[a];
+                x[a] = s.x[nd];
+                u[a] = s.x[nd] - s.X[nd];
+                v[a] = s.v[nd];
+            }
+            hex8::Hex8Result r;
+            hex8::internal_force(group.reference(e), mat, u, v, 0.0, r);
+            double dt = cfl::critical_time_step(ElementShape::Hex8, x, kRubber, r.volumetric_strain_rate, opt.bulk) *
+                        std::sqrt(scale[e]);
+            if (beta > 0.0) dt *= std::sqrt(1.0 + (beta / dt) * (beta / dt)) - beta / dt;
+            if (dt < best) {
+                best = dt;
+                best_e = e;
+            }
+        }
+        EXPECT_NEAR(res.dt_min, best, 1e-12 * best) << beta;
+        EXPECT_EQ(res.dt_element, best_e) << beta;
+    }
+}
+
+// The group's four-element blocks (hex8::Lanes) against the one-element kernel, element by element,
+// on a mesh whose size is not a multiple of four (the spare lanes of the last block) and with
+// large deformation, compression and expansion: the same energies, stresses and assembled forces.
+TEST(Hex8FastKernel, GroupBlocksEqualOneElementKernel) {
+    Mesh mesh = box_hex8(0.03, 0.03, 0.01, 3, 3, 1, "blk");  // 9 elements: blocks of 4, 4 and 1
+    std::mt19937 rng(9);
+    std::uniform_real_distribution<double> g(-1.0, 1.0);
+    for (auto& x : mesh.nodes) x += 0.001 * Vec3(g(rng), g(rng), g(rng));
+    Hex8Options opt;
+    opt.rayleigh_beta = 1e-6;
+    Hex8Group group(mesh, 0, kRubber, opt);
+    NodalState s;
+    s.X = mesh.nodes;
+    Mat3 A;
+    A << 0.2, -0.1, 0.05, 0.1, -0.15, 0.0, 0.03, 0.08, 0.1;
+    for (const auto& X : mesh.nodes) s.x.push_back(X + A * X + 0.0005 * Vec3(g(rng), g(rng), g(rng)));
+    for (const auto& X : mesh.nodes) s.v.push_back(Vec3(g(rng), g(rng), g(rng)) + 50.0 * g(rng) * X);
+    s.f.assign(mesh.node_count(), Vec3::Zero());
+    const auto res = group.internal_forces(s, false);
+    const auto mat = hex8::Hex8Material::from(kRubber, opt.hourglass_qm, opt.rayleigh_beta, opt.bulk, opt.bulk_viscosity);
+    std::vector<Vec3> f(mesh.node_count(), Vec3::Zero());
+    double w = 0, hg = 0, visc = 0, fmax = 0;
+    const auto vm = group.element_stress();
+    for (int e = 0; e < group.size(); ++e) {
+        std::array<Vec3, 8> u, v;
+        for (int a = 0; a < 8; ++a) {
+            const int nd = group.connectivity(e)[a];
+            u[a] = s.x[nd] - s.X[nd];
+            v[a] = s.v[nd];
+        }
+        hex8::Hex8Result r;
+        hex8::internal_force(group.reference(e), mat, u, v, 0.0, r);
+        w += r.strain_energy;
+        hg += r.hourglass_energy;
+        visc += r.viscous_power;
+        EXPECT_NEAR(vm[e], r.von_mises, 1e-13 * r.von_mises) << e;
+        for (int a = 0; a < 8; ++a) {
+            f[group.connectivity(e)[a]] += r.force[a];
+            fmax = std::max(fmax, r.force[a].norm());
+        }
+    }
+    EXPECT_NEAR(res.internal_energy, w, 1e-13 * w);
+    EXPECT_NEAR(res.hourglass_energy, hg, 1e-13 * hg);
+    EXPECT_NEAR(res.viscous_power, visc, 1e-13 * std::abs(visc));
+    for (int i = 0; i < mesh.node_count(); ++i) EXPECT_LT((s.f[i] - f[i]).norm(), 1e-13 * fmax) << i;
+}
