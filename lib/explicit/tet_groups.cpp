@@ -1,0 +1,278 @@
+#include "explicit/tet_groups.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <Spectra/SymEigsSolver.h>
+#include <fmt/format.h>
+
+#include "core/error.hpp"
+#include "explicit/solver.hpp"
+
+namespace fem {
+
+namespace {
+constexpr ElementShape shape_of(int n) { return n == 4 ? ElementShape::Tet4 : ElementShape::Tet10; }
+// Below this many elements the loop runs on one thread (fork/join costs more than the work).
+constexpr int kTetParallelMin = 1024;
+
+// y = M^-1/2 K M^-1/2 x for the group alone (free-free, its own lumped masses), K the stiffness at
+// rest applied element by element: the linearized neo-Hookean stress is sigma = lambda tr(eps) I +
+// 2 mu eps with eps = sym(grad u), f_a = sum_q w_q sigma dN_a/dX (tet::linear_stiffness, matrix-free).
+template <int N, int Q>
+class GroupStiffnessOp {
+public:
+    using Scalar = double;
+    GroupStiffnessOp(const std::vector<std::array<int, N>>& conn, const std::vector<tet::Reference<N, Q>>& refs,
+                     const hex8::Hex8Material& mat, std::vector<double> inv_sqrt_mass)
+        : conn_(conn), refs_(refs), mat_(mat), s_(std::move(inv_sqrt_mass)) {}
+    int rows() const { return static_cast<int>(3 * s_.size()); }
+    int cols() const { return rows(); }
+    void perform_op(const double* x, double* y) const {
+        std::fill(y, y + rows(), 0.0);
+        for (std::size_t e = 0; e < conn_.size(); ++e) {
+            std::array<Vec3, N> u;
+            for (int a = 0; a < N; ++a) u[a] = s_[conn_[e][a]] * Vec3(x[3 * conn_[e][a]], x[3 * conn_[e][a] + 1], x[3 * conn_[e][a] + 2]);
+            for (int q = 0; q < Q; ++q) {
+                const auto& g = refs_[e].dndx[q];
+                Mat3 H = Mat3::Zero();
+                for (int a = 0; a < N; ++a) H.noalias() += u[a] * g[a].transpose();
+                const Mat3 eps = 0.5 * (H + H.transpose());
+                const Mat3 sigma = mat_.lambda * eps.trace() * Mat3::Identity() + 2.0 * mat_.mu * eps;
+                for (int a = 0; a < N; ++a) {
+                    const Vec3 f = refs_[e].weight[q] * s_[conn_[e][a]] * (sigma * g[a]);
+                    for (int i = 0; i < 3; ++i) y[3 * conn_[e][a] + i] += f[i];
+                }
+            }
+        }
+    }
+
+private:
+    const std::vector<std::array<int, N>>& conn_;  // in the group's local node numbering
+    const std::vector<tet::Reference<N, Q>>& refs_;
+    const hex8::Hex8Material& mat_;
+    std::vector<double> s_;  // 1 / sqrt(lumped mass) per local node
+};
+
+}  // namespace
+
+template <int N, int Q>
+TetGroup<N, Q>::TetGroup(const Mesh& mesh, int block, const ElasticMaterial& material, const TetGroupOptions& options)
+    : material_(material),
+      kmat_(hex8::Hex8Material::from(material, 0.0, options.rayleigh_beta, options.bulk, options.bulk_viscosity)),
+      beta_(options.rayleigh_beta) {
+    constexpr ElementShape shape = shape_of(N);
+    const ElementBlock& b = mesh.blocks.at(block);
+    if (b.shape != shape)
+        throw InputError(fmt::format("part '{}' (block {}) is {}, not {}", b.part, block, to_string(b.shape),
+                                     to_string(shape)));
+    if (options.rayleigh_beta < 0)
+        throw InputError(fmt::format("part '{}': Rayleigh beta must not be negative", b.part));
+    part = b.part;
+    this->block = block;
+    const int n = b.size();
+    conn_.resize(n);
+    refs_.reserve(n);
+    mass_.resize(n);
+    element_ratio_.resize(n);
+    ratio_.resize(n);
+    table_dt_.resize(n);
+    std::array<Vec3, N> X;
+    for (int e = 0; e < n; ++e) {
+        for (int a = 0; a < N; ++a) {
+            conn_[e][a] = b.element(e)[a];
+            X[a] = mesh.nodes.at(conn_[e][a]);
+        }
+        const std::string name = fmt::format("part '{}' block {} {} element {}", part, block, to_string(shape), e);
+        if constexpr (N == 4) {
+            refs_.push_back(tet::make_tet4_reference(X, name.c_str()));
+            mass_[e] = tet::tet4_lumped_mass(X, material_.density);
+        } else {
+            refs_.push_back(tet::make_tet10_reference(X, name.c_str()));
+            mass_[e] = tet::tet10_lumped_mass(X, material_.density);
+        }
+        // The element's own stability limit 2 / omega_e against the Table 2-1 rule (tet_groups.hpp).
+        const double omega = tet::element_omega_max(tet::linear_stiffness(refs_[e], kmat_), mass_[e]);
+        const double dt_table = cfl::critical_time_step(shape, X, material_);
+        table_dt_[e] = dt_table;
+        element_ratio_[e] = (2.0 / omega) / dt_table;
+    }
+    mass_scale_.assign(n, 1.0);
+    von_mises_.assign(n, 0.0);
+    cauchy_.assign(n, Mat3::Zero());
+    ie_.assign(n, 0.0);
+    visc_.assign(n, 0.0);
+    dt_.assign(n, std::numeric_limits<double>::infinity());
+    bad_.assign(n, 0);
+    fe_.resize(static_cast<std::size_t>(n) * N);
+    std::vector<int> count(mesh.node_count(), 0);
+    for (const auto& c : conn_)
+        for (int a : c) ++count[a];
+    std::vector<int> first(mesh.node_count(), -1);
+    node_offset_.push_back(0);
+    for (int i = 0; i < mesh.node_count(); ++i)
+        if (count[i] > 0) {
+            first[i] = static_cast<int>(nodes_.size());
+            nodes_.push_back(i);
+            node_offset_.push_back(node_offset_.back() + count[i]);
+        }
+    node_slot_.resize(node_offset_.back());
+    std::vector<int> fill(nodes_.size(), 0);
+    for (int e = 0; e < n; ++e)
+        for (int a = 0; a < N; ++a) {
+            const int k = first[conn_[e][a]];
+            node_slot_[node_offset_[k] + fill[k]++] = e * N + a;
+        }
+    // The factor in use: never above 1 (where the measured limit is above Table 2-1's, as for tet4 on
+    // unstructured meshes, the thesis's Table 2-1 step is kept, as the solver does for hexahedra).
+    for (int e = 0; e < n; ++e) ratio_[e] = std::min(1.0, element_ratio_[e]);
+    if (options.measure_group_limit && n > 0) {
+        // The group's own omega_max (free-free, its lumped masses) by Lanczos: also a bound for the
+        // assembled model (supports and other parts' mass and stiffness only lower it: the same
+        // subassembly inequality as for single elements), and much tighter than the element bound on
+        // unstructured meshes (Gmsh finger: the element bound is 0.33 (tet4) / 0.47 (tet10) of the
+        // exact limit, tests/explicit/test_tet_explicit.cpp).
+        std::vector<std::array<int, N>> local(n);
+        for (int e = 0; e < n; ++e)
+            for (int a = 0; a < N; ++a) local[e][a] = first[conn_[e][a]];
+        std::vector<double> m(nodes_.size(), 0.0);
+        for (int e = 0; e < n; ++e)
+            for (int a = 0; a < N; ++a) m[local[e][a]] += mass_[e][a];
+        for (double& x : m) x = 1.0 / std::sqrt(x);
+        GroupStiffnessOp<N, Q> op(local, refs_, kmat_, std::move(m));
+        const double tol = 1e-6;
+        Spectra::SymEigsSolver<GroupStiffnessOp<N, Q>> eigs(op, 1, std::min(op.rows(), 40));
+        eigs.init();
+        eigs.compute(Spectra::SortRule::LargestAlge, 2000, tol);
+        if (eigs.info() == Spectra::CompInfo::Successful && eigs.eigenvalues()[0] > 0.0) {
+            // Ritz value theta: the residual bound puts an eigenvalue within tol theta of it, so
+            // lambda_max <= theta (1 + tol) when Lanczos has found the top of the spectrum.
+            const double omega = std::sqrt(eigs.eigenvalues()[0] * (1.0 + tol));
+            const double table_min = *std::min_element(table_dt_.begin(), table_dt_.end());
+            group_ratio_ = (2.0 / omega) / table_min;  // min_e group_ratio_ T_e = 2 / omega
+            ratio_.assign(n, std::min(1.0, group_ratio_));
+        }
+    }
+}
+
+template <int N, int Q>
+double TetGroup<N, Q>::add_lumped_mass(NodalState& s) const {
+    double added = 0.0;
+    for (int e = 0; e < size(); ++e) {
+        double m = 0.0;
+        for (int a = 0; a < N; ++a) {
+            s.mass[conn_[e][a]] += mass_scale_[e] * mass_[e][a];
+            m += mass_[e][a];
+        }
+        added += (mass_scale_[e] - 1.0) * m;
+    }
+    return added;
+}
+
+template <int N, int Q>
+double TetGroup<N, Q>::mass() const {
+    double m = 0.0;
+    for (const auto& me : mass_)
+        for (double x : me) m += x;
+    return m;
+}
+
+template <int N, int Q>
+std::vector<double> TetGroup<N, Q>::reference_time_steps() const {
+    std::vector<double> dt(table_dt_.size());
+    for (std::size_t e = 0; e < dt.size(); ++e) dt[e] = ratio_[e] * table_dt_[e];  // unscaled
+    return dt;
+}
+
+template <int N, int Q>
+void TetGroup<N, Q>::set_mass_scaling(std::vector<double> factor) {
+    if (static_cast<int>(factor.size()) != size()) throw InputError("mass scaling: one factor per element needed");
+    mass_scale_ = std::move(factor);
+}
+
+template <int N, int Q>
+GroupForceResult TetGroup<N, Q>::internal_forces(NodalState& s, bool compute_dt) {
+    constexpr ElementShape shape = shape_of(N);
+    const int n = size();
+#pragma omp parallel for schedule(dynamic, 256) if (n >= kTetParallelMin)
+    for (int e = 0; e < n; ++e) {
+        std::array<Vec3, N> x, v;
+        for (int a = 0; a < N; ++a) {
+            x[a] = s.x[conn_[e][a]];
+            v[a] = s.v[conn_[e][a]];
+        }
+        tet::Result<N> r;
+        tet::internal_force(refs_[e], kmat_, std::span<const Vec3>(x), std::span<const Vec3>(v), r);
+        Vec3* fe = &fe_[static_cast<std::size_t>(e) * N];
+        bad_[e] = !(r.min_jacobian > 0.0) || !std::isfinite(r.strain_energy);
+        if (bad_[e]) {
+            for (int a = 0; a < N; ++a) fe[a].setZero();
+            ie_[e] = visc_[e] = 0.0;
+            continue;
+        }
+        for (int a = 0; a < N; ++a) fe[a] = r.force[a];
+        ie_[e] = r.strain_energy;
+        visc_[e] = r.viscous_power;
+        von_mises_[e] = r.von_mises;
+        cauchy_[e] = r.cauchy;
+        if (compute_dt) {
+            // Table 2-1 on the current nodes (with the Q term) times the element's stability ratio.
+            double dt = ratio_[e] *
+                        cfl::critical_time_step(shape, x, material_, kmat_.bulk_viscosity ? r.volumetric_strain_rate : 0.0,
+                                                kmat_.bulk) *
+                        std::sqrt(mass_scale_[e]);
+            if (beta_ > 0.0) {
+                const double xi = beta_ / dt;  // beta omega / 2 with omega = 2 / dt
+                dt *= std::sqrt(1.0 + xi * xi) - xi;
+            }
+            dt_[e] = dt;
+        }
+    }
+    const int nn = static_cast<int>(nodes_.size());
+#pragma omp parallel for schedule(static) if (n >= kTetParallelMin)
+    for (int k = 0; k < nn; ++k) {
+        Vec3 sum = Vec3::Zero();
+        for (int j = node_offset_[k]; j < node_offset_[k + 1]; ++j) sum += fe_[node_slot_[j]];
+        s.f[nodes_[k]] += sum;
+    }
+    GroupForceResult out;
+    for (int e = 0; e < n; ++e) {  // fixed order: the same bits on any number of threads
+        if (bad_[e]) {
+            if (out.bad_element < 0) out.bad_element = e;
+            continue;
+        }
+        out.internal_energy += ie_[e];
+        out.viscous_power += visc_[e];
+        out.max_von_mises = std::max(out.max_von_mises, von_mises_[e]);
+        if (compute_dt && dt_[e] < out.dt_min) {
+            out.dt_min = dt_[e];
+            out.dt_element = e;
+        }
+    }
+    if (!compute_dt) out.dt_min = std::numeric_limits<double>::quiet_NaN();
+    return out;
+}
+
+template class TetGroup<4, 1>;
+template class TetGroup<10, 4>;
+
+void add_tets(ExplicitModel& model, std::string_view part, const ElasticMaterial& material, const TetGroupOptions& options) {
+    const Mesh& mesh = model.mesh();
+    const std::vector<int> blocks = mesh.blocks_of_part(part);  // InputError when none
+    for (int b : blocks) {
+        const ElementShape shape = mesh.blocks[b].shape;
+        if (shape != ElementShape::Tet4 && shape != ElementShape::Tet10)
+            throw InputError(fmt::format("add_tets: part '{}' has a {} block ({}); only tet4 and tet10 blocks are "
+                                         "tetrahedral parts",
+                                         part, to_string(shape), b));
+    }
+    for (int b : blocks) {
+        if (mesh.blocks[b].shape == ElementShape::Tet4)
+            model.add_group(std::make_unique<Tet4Group>(mesh, b, material, options));
+        else
+            model.add_group(std::make_unique<Tet10Group>(mesh, b, material, options));
+    }
+}
+
+}  // namespace fem

@@ -1,0 +1,113 @@
+#pragma once
+// Tetrahedral element groups of the explicit solver (4-node constant strain and 10-node quadratic
+// tetrahedra, element/tet_explicit.hpp), for the Gmsh finger meshes of thesis Cases C and D.
+//
+// Time step. Table 2-1 gives the tetrahedron the minimum altitude over the dilatational wave
+// speed. That is not a stability bound for the tet10 with HRZ masses (its step is set by the corner
+// sub-tetrahedra, about half the size): the Table 2-1 step over the exact limit is 2.78 on a
+// structured block and 1.55 on a Gmsh finger mesh (tests/explicit/test_tet_explicit.cpp). So the
+// group replaces it by a measured limit, once, on the reference geometry:
+//  1. element bound: each element's own largest frequency omega_e (its 3N x 3N linear stiffness
+//     against its lumped masses, dense eigensolver). The element eigenvalue inequality
+//     omega_max(assembled) <= max_e omega_e (Irons; Hughes Sec 9.1.5) makes min_e 2 / omega_e a
+//     guaranteed bound, but a pessimistic one on unstructured meshes (0.33 x the exact limit for
+//     tet4, 0.47 for tet10 on the Gmsh finger);
+//  2. group bound (default, TetGroupOptions::measure_group_limit): omega_max of the whole group,
+//     free-free with its own lumped masses, by Lanczos (Spectra) on the matrix-free linear
+//     stiffness. The same subassembly inequality makes it a bound for any model containing the
+//     group (supports, other parts and their masses only lower omega_max). Falls back to 1. when
+//     Lanczos does not converge.
+// With the measured limit written as a factor r on the Table 2-1 steps (r_e = (2/omega_e)/T_e, or
+// r = (2/omega_group)/min_e T_e), capped at 1 (where Table 2-1 is already below the measured limit,
+// as for tet4 on the Gmsh finger: 0.54 of it, the thesis's step is kept, like the solver's
+// hexahedron stability factor), every cycle returns r x fem::cfl::critical_time_step(current
+// nodes, with the bulk-viscosity Q term): the Table 2-1 rule follows the deformation (altitudes
+// shrink in compression), the measured factor makes it a bound at rest. Stiffness damping beta
+// lowers it as for the hexahedron: dt <= (2 / omega)(sqrt(1 + xi^2) - xi), xi = beta omega / 2.
+// Selective mass scaling multiplies an element's step by sqrt(density factor) as for the
+// hexahedron; the factor r is not re-measured after scaling (a scaled model is no longer bounded
+// by the measurement: keep the usual 0.9 and check the energy balance).
+//
+// Usage (a finger meshed with Gmsh in tet10, part "finger"):
+//   ExplicitModel model(mesh);
+//   add_tets(model, "finger", rubber, {.rayleigh_beta = 0.0});
+#include <array>
+#include <string_view>
+#include <vector>
+
+#include "element/critical_time_step.hpp"
+#include "element/tet_explicit.hpp"
+#include "explicit/element_group.hpp"
+#include "material/elastic.hpp"
+
+namespace fem {
+
+class ExplicitModel;
+
+/// Options of a tetrahedral part (LS-DYNA *SECTION_SOLID ELFORM 10/16 + *CONTROL_BULK_VISCOSITY).
+struct TetGroupOptions {
+    bool bulk_viscosity = true;   // Table 2-1 Q terms
+    BulkViscosity bulk{};         // C0 = 1.5, C1 = 0.06
+    double rayleigh_beta = 0.0;   // stiffness-proportional damping beta of Eq 2-39 [s]
+    // Measure the group's own omega_max once (Lanczos, see above) and use it instead of the
+    // per-element bound; false: the element bound only (no eigen-solve of the whole group).
+    bool measure_group_limit = true;
+};
+
+/// A block of tet4 (N = 4, one point) or tet10 (N = 10, four points) elements, one material.
+template <int N, int Q>
+class TetGroup final : public ElementGroup {
+public:
+    TetGroup(const Mesh& mesh, int block, const ElasticMaterial& material, const TetGroupOptions& options = {});
+    std::string kind() const override { return N == 4 ? "tet4" : "tet10"; }
+    int size() const override { return static_cast<int>(refs_.size()); }
+    std::vector<int> nodes() const override { return nodes_; }
+    double add_lumped_mass(NodalState& s) const override;
+    double mass() const override;
+    std::vector<double> reference_time_steps() const override;
+    void set_mass_scaling(std::vector<double> factor) override;
+    GroupForceResult internal_forces(NodalState& s, bool compute_dt) override;
+    std::vector<double> element_stress() const override { return von_mises_; }
+
+    const ElasticMaterial& material() const { return material_; }
+    const tet::Reference<N, Q>& reference(int e) const { return refs_[e]; }
+    const std::array<int, N>& connectivity(int e) const { return conn_[e]; }
+    /// Element e's lumped nodal masses (unscaled).
+    const std::array<double, N>& lumped_mass(int e) const { return mass_[e]; }
+    /// The factor on element e's Table 2-1 step in use: min(1, group_stability_ratio()) when
+    /// measured, else min(1, element_stability_ratio(e)).
+    double stability_ratio(int e) const { return ratio_[e]; }
+    /// r_e = (2 / omega_e) / Table 2-1 step of the reference element (the element bound).
+    double element_stability_ratio(int e) const { return element_ratio_[e]; }
+    /// (2 / omega_group) / min_e Table 2-1 step on the reference (0 when not measured).
+    double group_stability_ratio() const { return group_ratio_; }
+    /// Elastic Cauchy stress (current-volume average) of element e at the last force evaluation.
+    const Mat3& cauchy(int e) const { return cauchy_[e]; }
+
+private:
+    ElasticMaterial material_;
+    hex8::Hex8Material kmat_;
+    double beta_ = 0.0;
+    std::vector<std::array<int, N>> conn_;
+    std::vector<tet::Reference<N, Q>> refs_;
+    std::vector<std::array<double, N>> mass_;
+    std::vector<double> ratio_, element_ratio_, table_dt_, mass_scale_, von_mises_;
+    double group_ratio_ = 0.0;
+    std::vector<Mat3> cauchy_;
+    // Deterministic assembly as Hex8Group: element forces to fe_, then each node sums its slots in
+    // a fixed order (CSR node -> slots).
+    std::vector<Vec3> fe_;
+    std::vector<double> ie_, visc_, dt_;
+    std::vector<unsigned char> bad_;
+    std::vector<int> nodes_, node_offset_, node_slot_;
+};
+
+using Tet4Group = TetGroup<4, 1>;
+using Tet10Group = TetGroup<10, 4>;
+
+/// Adds a Tet4Group or Tet10Group for every block of `part`; InputError when the part has a block
+/// of another shape (hexahedra: ExplicitModel::add_hex8) or no block.
+void add_tets(ExplicitModel& model, std::string_view part, const ElasticMaterial& material,
+              const TetGroupOptions& options = {});
+
+}  // namespace fem
