@@ -49,25 +49,7 @@ Hex8Group::Hex8Group(const Mesh& mesh, int block, const ElasticMaterial& materia
     von_mises_sq_.assign(n, 0.0);
     dt_.assign(n, std::numeric_limits<double>::infinity());
     fe_.resize(static_cast<std::size_t>(n) * 8);
-    // CSR node -> element slots, slots in increasing order (fixed summation order).
-    std::vector<int> count(mesh.node_count(), 0);
-    for (const auto& c : conn_)
-        for (int a : c) ++count[a];
-    std::vector<int> first(mesh.node_count(), -1);
-    node_offset_.push_back(0);
-    for (int i = 0; i < mesh.node_count(); ++i)
-        if (count[i] > 0) {
-            first[i] = static_cast<int>(nodes_.size());
-            nodes_.push_back(i);
-            node_offset_.push_back(node_offset_.back() + count[i]);
-        }
-    node_slot_.resize(node_offset_.back());
-    std::vector<int> fill(nodes_.size(), 0);
-    for (int e = 0; e < n; ++e)
-        for (int a = 0; a < 8; ++a) {
-            const int k = first[conn_[e][a]];
-            node_slot_[node_offset_[k] + fill[k]++] = e * 8 + a;
-        }
+    scatter_ = par::NodeScatter::build(conn_, mesh.node_count());
 }
 
 double Hex8Group::add_lumped_mass(NodalState& s) const {
@@ -184,13 +166,7 @@ GroupForceResult Hex8Group::internal_forces(NodalState& s, bool compute_dt) {
         part_res[c] = p;
     }
     // Gather: each node sums its element slots in a fixed order.
-    const int nn = static_cast<int>(nodes_.size());
-#pragma omp parallel for schedule(dynamic, par::kChunk) if (n >= par::kParallelMin)
-    for (int k = 0; k < nn; ++k) {
-        Vec3 sum = Vec3::Zero();
-        for (int j = node_offset_[k]; j < node_offset_[k + 1]; ++j) sum += fe_[node_slot_[j]];
-        s.f[nodes_[k]] += sum;
-    }
+    scatter_.add_to(fe_, s.f, n >= par::kParallelMin);
     GroupForceResult out;
     for (const auto& p : part_res) {  // fixed order
         out.internal_energy += p.ie;

@@ -8,6 +8,7 @@
 #include "element/beam_corotational.hpp"
 #include "element/hex8_explicit.hpp"
 #include "explicit/element_group.hpp"
+#include "explicit/parallel.hpp"
 #include "material/elastic.hpp"
 
 namespace fem {
@@ -26,7 +27,7 @@ public:
     Hex8Group(const Mesh& mesh, int block, const ElasticMaterial& material, const Hex8Options& options = {});
     std::string kind() const override { return "hex8"; }
     int size() const override { return static_cast<int>(refs_.size()); }
-    std::vector<int> nodes() const override { return nodes_; }
+    std::vector<int> nodes() const override { return scatter_.nodes; }
     double add_lumped_mass(NodalState& s) const override;
     double mass() const override;
     std::vector<double> reference_time_steps() const override;
@@ -55,7 +56,7 @@ private:
     // Deterministic assembly: element forces go to fe_ (8 per element); each node then sums its
     // element slots in a fixed order (CSR node -> slots), whatever the number of threads.
     std::vector<Vec3> fe_;
-    std::vector<int> nodes_, node_offset_, node_slot_;
+    par::NodeScatter scatter_;  // the group's nodes and their element force slots
 };
 
 /// Beam cross-section and orientation of a beam part (LS-DYNA *SECTION_BEAM).

@@ -106,24 +106,7 @@ TetGroup<N, Q>::TetGroup(const Mesh& mesh, int block, const ElasticMaterial& mat
     dt_.assign(n, std::numeric_limits<double>::infinity());
     bad_.assign(n, 0);
     fe_.resize(static_cast<std::size_t>(n) * N);
-    std::vector<int> count(mesh.node_count(), 0);
-    for (const auto& c : conn_)
-        for (int a : c) ++count[a];
-    std::vector<int> first(mesh.node_count(), -1);
-    node_offset_.push_back(0);
-    for (int i = 0; i < mesh.node_count(); ++i)
-        if (count[i] > 0) {
-            first[i] = static_cast<int>(nodes_.size());
-            nodes_.push_back(i);
-            node_offset_.push_back(node_offset_.back() + count[i]);
-        }
-    node_slot_.resize(node_offset_.back());
-    std::vector<int> fill(nodes_.size(), 0);
-    for (int e = 0; e < n; ++e)
-        for (int a = 0; a < N; ++a) {
-            const int k = first[conn_[e][a]];
-            node_slot_[node_offset_[k] + fill[k]++] = e * N + a;
-        }
+    scatter_ = par::NodeScatter::build(conn_, mesh.node_count());
     // The factor in use: never above 1 (where the measured limit is above Table 2-1's, as for tet4 on
     // unstructured meshes, the thesis's Table 2-1 step is kept, as the solver does for hexahedra).
     for (int e = 0; e < n; ++e) ratio_[e] = std::min(1.0, element_ratio_[e]);
@@ -133,10 +116,12 @@ TetGroup<N, Q>::TetGroup(const Mesh& mesh, int block, const ElasticMaterial& mat
         // subassembly inequality as for single elements), and much tighter than the element bound on
         // unstructured meshes (Gmsh finger: the element bound is 0.33 (tet4) / 0.47 (tet10) of the
         // exact limit, tests/explicit/test_tet_explicit.cpp).
+        std::vector<int> first(scatter_.nodes.back() + 1, -1);  // global node -> group-local index
+        for (int k = 0; k < static_cast<int>(scatter_.nodes.size()); ++k) first[scatter_.nodes[k]] = k;
         std::vector<std::array<int, N>> local(n);
         for (int e = 0; e < n; ++e)
             for (int a = 0; a < N; ++a) local[e][a] = first[conn_[e][a]];
-        std::vector<double> m(nodes_.size(), 0.0);
+        std::vector<double> m(scatter_.nodes.size(), 0.0);
         for (int e = 0; e < n; ++e)
             for (int a = 0; a < N; ++a) m[local[e][a]] += mass_[e][a];
         for (double& x : m) x = 1.0 / std::sqrt(x);
@@ -229,13 +214,7 @@ GroupForceResult TetGroup<N, Q>::internal_forces(NodalState& s, bool compute_dt)
             dt_[e] = dt;
         }
     }
-    const int nn = static_cast<int>(nodes_.size());
-#pragma omp parallel for schedule(static) if (n >= kTetParallelMin)
-    for (int k = 0; k < nn; ++k) {
-        Vec3 sum = Vec3::Zero();
-        for (int j = node_offset_[k]; j < node_offset_[k + 1]; ++j) sum += fe_[node_slot_[j]];
-        s.f[nodes_[k]] += sum;
-    }
+    scatter_.add_to(fe_, s.f, n >= kTetParallelMin);
     GroupForceResult out;
     for (int e = 0; e < n; ++e) {  // fixed order: the same bits on any number of threads
         if (bad_[e]) {

@@ -38,6 +38,7 @@
 #include "element/critical_time_step.hpp"
 #include "element/tet_explicit.hpp"
 #include "explicit/element_group.hpp"
+#include "explicit/parallel.hpp"
 #include "material/elastic.hpp"
 
 namespace fem {
@@ -61,7 +62,7 @@ public:
     TetGroup(const Mesh& mesh, int block, const ElasticMaterial& material, const TetGroupOptions& options = {});
     std::string kind() const override { return N == 4 ? "tet4" : "tet10"; }
     int size() const override { return static_cast<int>(refs_.size()); }
-    std::vector<int> nodes() const override { return nodes_; }
+    std::vector<int> nodes() const override { return scatter_.nodes; }
     double add_lumped_mass(NodalState& s) const override;
     double mass() const override;
     std::vector<double> reference_time_steps() const override;
@@ -99,7 +100,7 @@ private:
     std::vector<Vec3> fe_;
     std::vector<double> ie_, visc_, dt_;
     std::vector<unsigned char> bad_;
-    std::vector<int> nodes_, node_offset_, node_slot_;
+    par::NodeScatter scatter_;  // the group's nodes and their element force slots
 };
 
 using Tet4Group = TetGroup<4, 1>;

@@ -316,6 +316,10 @@ double tet10_volume(const std::vector<Vec3>& x) {
 
 }  // namespace
 
+ElasticMaterial rubber(double youngs_modulus) {
+    return ElasticMaterial::make("rubber (Table 3-1)", youngs_modulus, 0.49, 1000.0);
+}
+
 std::vector<double> table_3_1_lengths() { return {3.0 * units::inch, 4.5 * units::inch, 6.0 * units::inch, 8.0 * units::inch}; }
 
 HexCrossSection mapped_cross_section(int n) {

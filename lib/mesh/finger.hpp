@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "core/units.hpp"
+#include "material/elastic.hpp"
 #include "mesh/mesh.hpp"
 
 namespace fem::finger {
@@ -22,6 +23,8 @@ inline constexpr double semi_major_axis = 12.0 * units::mm;   // a
 inline constexpr double semi_minor_axis = 8.45 * units::mm;   // b
 /// The four finger lengths of Table 3-1 (3, 4.5, 6, 8 inch), in metres.
 std::vector<double> table_3_1_lengths();
+/// The finger rubber of Table 3-1: E 6.1 MPa (Table 3-7 also runs 4.2 MPa), nu 0.49, rho 1000 kg/m3.
+ElasticMaterial rubber(double youngs_modulus = 6.1 * units::MPa);
 
 /// The simplified finger: an elliptic cylinder (Cases A-C of Sec 3.3).
 struct EllipticCylinder {

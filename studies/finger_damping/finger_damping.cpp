@@ -61,7 +61,7 @@ using units::us;
 namespace {
 
 // --- Table 3-1 --------------------------------------------------------------------------------------
-const ElasticMaterial kRubber = ElasticMaterial::make("rubber", 6.1 * units::MPa, 0.49, 1000.0);
+const ElasticMaterial kRubber = finger::rubber();
 constexpr double kA = finger::semi_major_axis, kB = finger::semi_minor_axis;
 const std::vector<double> kLengthsInch = {3.0, 4.5, 6.0, 8.0};
 

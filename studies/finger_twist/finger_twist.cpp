@@ -43,7 +43,7 @@ using units::mm;
 namespace {
 
 // Table 3-1 and Sec 3.6.
-const ElasticMaterial kRubber = ElasticMaterial::make("rubber", 6.1 * units::MPa, 0.49, 1000.0);
+const ElasticMaterial kRubber = finger::rubber();
 constexpr double kA = finger::semi_major_axis, kB = finger::semi_minor_axis;
 constexpr double kLength = 4.5 * inch;
 constexpr double kPound = 4.448222;  // N ("one pound (4.45 N)")

@@ -16,7 +16,7 @@ using fem::units::mm;
 namespace {
 
 constexpr double pi = std::numbers::pi;
-const ElasticMaterial kRubber = ElasticMaterial::make("rubber (Table 3-1)", 6.1e6, 0.49, 1000.0);
+const ElasticMaterial kRubber = fem::finger::rubber();
 
 // The smallest element critical time step of the mesh (Table 2-1, no bulk-viscosity term: the
 // undeformed mesh), as the explicit solver would compute it before the first cycle.
