@@ -5,6 +5,8 @@
 // Node order: C3D10 numbers the mid-edge nodes 01, 12, 02, 03, 13, 23, ours (Gmsh) 01, 12, 02, 03,
 // 23, 13: the last two are swapped on the way out.
 #include <chrono>
+#include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -78,6 +80,22 @@ inline std::vector<double> read_ccx_frequencies(const std::filesystem::path& dat
         if (table && std::regex_match(line, mt, row)) f.push_back(std::stod(mt[4].str()));
     }
     return f;
+}
+
+/// Prints ours beside ccx's frequencies for the first `modes` modes and returns the number of modes
+/// whose relative difference exceeds `tolerance` (the exit status of a peer test).
+inline int compare_with_ccx(const std::vector<double>& f_ccx, const std::vector<double>& f_ours, int modes,
+                            double tolerance, const char* ccx_label, const char* ours_label) {
+    std::printf("mode   %-14s  %-14s  rel. diff\n", ccx_label, ours_label);
+    int failed = 0;
+    for (int k = 0; k < modes; ++k) {
+        const double d = f_ours[k] / f_ccx[k] - 1.0;
+        const bool ok = std::abs(d) <= tolerance;
+        failed += !ok;
+        std::printf("%4d  %14.7g  %14.7g  %+.2e %s\n", k + 1, f_ccx[k], f_ours[k], d, ok ? "" : "FAIL");
+    }
+    std::printf("%s (|rel. diff| <= %g)\n", failed ? "peer comparison FAILED" : "peer comparison passed", tolerance);
+    return failed;
 }
 
 }  // namespace fem::test
