@@ -347,30 +347,23 @@ int main(int argc, char** argv) {
         // log-log. The printed Eq 3-1 comes out only when zeta is taken as alpha / alpha_cr (1.7143,
         // 1.125, 0.1667, 0.15) instead of the rounded zeta column: both fits are checked.
         {
+            // Eqs 3-1/3-2 are piecewise: a quadratic through the 3, 4.5 and 6 inch values and a line
+            // through the 6 and 8 inch values; `prefix` names the reference entries of one refit.
             const std::vector<double> x3 = {3.0, 4.5, 6.0}, x2 = {6.0, 8.0};
+            auto check_piecewise_fit = [&](const std::string& prefix, const std::vector<double>& y) {
+                const auto q = polyfit(x3, {y[0], y[1], y[2]}, 2);
+                const auto l = polyfit(x2, {y[2], y[3]}, 1);
+                study.check(prefix + "/quadratic/x2", q[2]);
+                study.check(prefix + "/quadratic/x1", q[1]);
+                study.check(prefix + "/quadratic/x0", q[0]);
+                study.check(prefix + "/linear/x1", l[1]);
+                study.check(prefix + "/linear/x0", l[0]);
+            };
             std::vector<double> zeta_ratio(4);
             for (int i = 0; i < 4; ++i) zeta_ratio[i] = kAlpha[i] / kAlphaCr[i];
-            const auto zq = polyfit(x3, {zeta_ratio[0], zeta_ratio[1], zeta_ratio[2]}, 2);
-            const auto zl = polyfit(x2, {zeta_ratio[2], zeta_ratio[3]}, 1);
-            study.check("eq-3-1/quadratic/x2", zq[2]);
-            study.check("eq-3-1/quadratic/x1", zq[1]);
-            study.check("eq-3-1/quadratic/x0", zq[0]);
-            study.check("eq-3-1/linear/x1", zl[1]);
-            study.check("eq-3-1/linear/x0", zl[0]);
-            const auto pq = polyfit(x3, {kZeta[0], kZeta[1], kZeta[2]}, 2);
-            const auto pl = polyfit(x2, {kZeta[2], kZeta[3]}, 1);
-            study.check("eq-3-1/printed-zeta/quadratic/x2", pq[2]);
-            study.check("eq-3-1/printed-zeta/quadratic/x1", pq[1]);
-            study.check("eq-3-1/printed-zeta/quadratic/x0", pq[0]);
-            study.check("eq-3-1/printed-zeta/linear/x1", pl[1]);
-            study.check("eq-3-1/printed-zeta/linear/x0", pl[0]);
-            const auto aq = polyfit(x3, {kAlpha[0], kAlpha[1], kAlpha[2]}, 2);
-            const auto al = polyfit(x2, {kAlpha[2], kAlpha[3]}, 1);
-            study.check("eq-3-2/quadratic/x2", aq[2]);
-            study.check("eq-3-2/quadratic/x1", aq[1]);
-            study.check("eq-3-2/quadratic/x0", aq[0]);
-            study.check("eq-3-2/linear/x1", al[1]);
-            study.check("eq-3-2/linear/x0", al[0]);
+            check_piecewise_fit("eq-3-1", zeta_ratio);
+            check_piecewise_fit("eq-3-1/printed-zeta", kZeta);
+            check_piecewise_fit("eq-3-2", kAlpha);
             const auto [c, p] = powerfit(kLengthsInch, kAlphaCr);
             study.check("eq-3-3/coefficient", c);
             study.check("eq-3-3/exponent", p);

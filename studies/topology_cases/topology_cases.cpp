@@ -261,6 +261,24 @@ int main(int argc, char** argv) {
         //           rotations about Y and Z.
         //   Eqs 5-3..5-8: six 20 N forces, each "a possible loading condition": six load cases whose
         //           compliances are summed (the thesis does not say whether ANSYS summed them).
+        // Shackle and gripper share the load handling: every force is its own load case at the node
+        // nearest its point, and a design "carries" a load when density >= 0.5 links that node to
+        // the support.
+        struct LoadPoint { Vec3 at, force; };
+        auto add_load_cases = [](Model& m, const Mesh& mesh, const std::vector<LoadPoint>& loads) {
+            std::vector<int> nodes;
+            for (std::size_t k = 0; k < loads.size(); ++k) {
+                nodes.push_back(nearest_node(mesh, loads[k].at));
+                m.add_force(static_cast<int>(k), nodes.back(), loads[k].force);
+            }
+            return nodes;
+        };
+        auto loads_carried = [](const Mesh& mesh, const std::vector<double>& density, const std::vector<int>& load_nodes,
+                                const std::vector<int>& support) {
+            int linked = 0;
+            for (int n : load_nodes) linked += solid_path(mesh, density, 0.5, n, support);
+            return linked;
+        };
         {
             const double a = 0.08, len = 0.3, t = 0.010, h = 0.004;
             Mesh flat = rectangle_quads(2 * a, len, 40, 75, ElementShape::Quad4, "shackle");
@@ -272,7 +290,6 @@ int main(int argc, char** argv) {
                 p = u >= -a - 1e-12 ? Vec3(u, 0, v) : Vec3(-a, -a - u, v);
             }
             const auto steel = ElasticMaterial::make("steel", 210 * GPa, 0.28, 7700);
-            struct LoadPoint { Vec3 at, force; };
             const std::vector<LoadPoint> loads = {
                 {{-0.05, 0, 0.06}, {0, -17, 10.6}},   // Eq 5-3
                 {{-0.04, 0, 0.05}, {20, 0, 0}},       // Eq 5-4
@@ -295,12 +312,7 @@ int main(int argc, char** argv) {
                 Model m = shell_model(mesh, steel, t);
                 m.fix(fixed_end, {0, 1, 2, 3, 4, 5}, "fixed end (Eq 5-1)");
                 m.fix(symmetry, {0, 4, 5}, "symmetry plane X = 0 (Eq 5-2)");
-                load_nodes.clear();
-                for (std::size_t k = 0; k < loads.size(); ++k) {
-                    const int n = nearest_node(mesh, loads[k].at);
-                    load_nodes.push_back(n);
-                    m.add_force(static_cast<int>(k), n, loads[k].force);
-                }
+                load_nodes = add_load_cases(m, mesh, loads);
                 if (removed == 70)
                     fmt::print("shackle body: {} nodes, {} MITC4 elements, 6 load cases (thesis: 9669 nodes, 3141 SHELL93)\n",
                                mesh.node_count(), m.element_count());
@@ -308,8 +320,7 @@ int main(int argc, char** argv) {
                 const Outcome o = run_case(study, name, mesh, m, settings(removed / 100.0, h), plot_xy, h / 2, h / 2);
                 study.check(fmt::format("fig-5-5/{}/volume", name), o.result.final_volume);
                 all_converged = all_converged && o.result.converged;
-                int linked = 0;
-                for (int n : load_nodes) linked += solid_path(mesh, o.result.density, 0.5, n, fixed_end);
+                const int linked = loads_carried(mesh, o.result.density, load_nodes, fixed_end);
                 all_paths = all_paths && linked == static_cast<int>(load_nodes.size());
                 paths += fmt::format("{} %: {} of 6 loads linked, {} iterations; ", removed, linked, o.result.iterations);
             }
@@ -329,7 +340,6 @@ int main(int argc, char** argv) {
             const double W = 0.05, H = 0.1, t = 0.010, h = W / 40;
             const Mesh mesh = rectangle_quads(W, H, 40, 80, ElementShape::Quad4, "gripper");
             const auto steel = ElasticMaterial::make("steel", 210 * GPa, 0.28, 7700);
-            struct LoadPoint { Vec3 at, force; };
             const std::vector<LoadPoint> loads = {
                 {{0.010, 0.090, 0}, {-16.2, -6.5, -5.3}},   // Eq 5-11
                 {{0.015, 0.084, 0}, {-38, -11.5, -1}},      // Eq 5-12
@@ -343,18 +353,12 @@ int main(int argc, char** argv) {
             for (int removed : {85, 90}) {
                 Model m = shell_model(mesh, steel, t);
                 m.fix(corner, {0, 1, 2, 3, 4, 5}, "fixed corner (Eq 5-10)");
-                std::vector<int> load_nodes;
-                for (std::size_t k = 0; k < loads.size(); ++k) {
-                    const int n = nearest_node(mesh, loads[k].at);
-                    load_nodes.push_back(n);
-                    m.add_force(static_cast<int>(k), n, loads[k].force);
-                }
+                const std::vector<int> load_nodes = add_load_cases(m, mesh, loads);
                 const std::string name = fmt::format("gripper-{}", removed);
                 const Outcome o = run_case(study, name, mesh, m, settings(removed / 100.0, h), element_centroids(mesh), h / 2, h / 2);
                 study.check(fmt::format("fig-5-6/{}/volume", name), o.result.final_volume);
                 all_converged = all_converged && o.result.converged;
-                int linked = 0;
-                for (int n : load_nodes) linked += solid_path(mesh, o.result.density, 0.5, n, corner);
+                const int linked = loads_carried(mesh, o.result.density, load_nodes, corner);
                 all_paths = all_paths && linked == static_cast<int>(load_nodes.size());
                 paths += fmt::format("{} %: {} of 3 loads linked, {} iterations; ", removed, linked, o.result.iterations);
             }
