@@ -1,6 +1,8 @@
 #include "damping/signal.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <fmt/format.h>
 
 #include "core/error.hpp"
@@ -67,6 +69,40 @@ int count_crossings(const SampledSignal& s, double level, double band, double t_
         side = now;
     }
     return crossings;
+}
+
+}  // namespace fem::damping
+
+namespace fem::damping {
+
+SampledSignal cfc_filter(const SampledSignal& s, double cfc) {
+    s.validate("cfc_filter");
+    if (!(cfc > 0.0) || !std::isfinite(cfc)) throw InputError(fmt::format("cfc_filter: CFC = {} must be positive", cfc));
+    if (1.0 / s.dt < 10.0 * cfc)
+        throw InputError(fmt::format("cfc_filter: sampling rate {:.4g} Hz is below 10 x CFC {} (SAE J211)", 1.0 / s.dt,
+                                     cfc));
+    // J211-1 Appendix C coefficients: the analogue design frequency 2.0775 x CFC, pre-warped for the
+    // bilinear transform.
+    const double wd = 2.0 * std::numbers::pi * cfc * 2.0775;
+    const double wa = std::tan(0.5 * wd * s.dt);
+    const double den = 1.0 + std::sqrt(2.0) * wa + wa * wa;
+    const double a0 = wa * wa / den, a1 = 2.0 * a0, a2 = a0;
+    const double b1 = -2.0 * (wa * wa - 1.0) / den;
+    const double b2 = (-1.0 + std::sqrt(2.0) * wa - wa * wa) / den;
+    auto pass = [&](std::vector<double>& x) {  // in place, y[i] from x[i..i-2] and y[i-1..i-2]
+        double xm1 = x.front(), xm2 = x.front(), ym1 = x.front(), ym2 = x.front();
+        for (double& xi : x) {
+            const double y = a0 * xi + a1 * xm1 + a2 * xm2 + b1 * ym1 + b2 * ym2;
+            xm2 = xm1, xm1 = xi, ym2 = ym1, ym1 = y;
+            xi = y;
+        }
+    };
+    SampledSignal out = s;
+    pass(out.x);
+    std::reverse(out.x.begin(), out.x.end());
+    pass(out.x);
+    std::reverse(out.x.begin(), out.x.end());
+    return out;
 }
 
 }  // namespace fem::damping

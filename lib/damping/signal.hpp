@@ -38,3 +38,15 @@ std::vector<Extremum> find_extrema(const SampledSignal& s, double min_swing = 0.
 int count_crossings(const SampledSignal& s, double level, double band = 0.0, double t_start = -1e300);
 
 }  // namespace fem::damping
+
+namespace fem::damping {
+
+/// SAE J211-1 / ISO 6487 channel-frequency-class (CFC) low-pass filter, as crash and impact codes'
+/// post-processors apply it to forces and accelerations (LS-PrePost's "SAE" filter): a two-pole
+/// Butterworth run forward and then backward over the record, so four poles and no phase shift.
+/// CFC 60 is flat to 60 Hz and 3 dB down at about 100 Hz (1.667 x CFC). The record must be uniformly
+/// sampled at 10 x CFC or faster (J211's sampling rule): InputError otherwise. Both passes start
+/// from the record's end value at rest, so a constant record passes unchanged.
+SampledSignal cfc_filter(const SampledSignal& s, double cfc);
+
+}  // namespace fem::damping

@@ -638,7 +638,7 @@ RunSummary ExplicitSolver::run() {
     std::vector<Partial> partial(chunks);
     const double tiny = 1e-12 * opt_.end_time;
 
-    while (t_ < opt_.end_time - tiny) {
+    while (t_ < opt_.end_time - tiny && !stop_requested_) {
         // No shortened last step: a change of step changes the discrete energy that central
         // differences conserve; the run ends at the first step at or after end_time (as LS-DYNA).
         const double dtavg = step_ == 0 ? 0.5 * dt_half : 0.5 * (dt_prev + dt_half);

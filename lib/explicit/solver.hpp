@@ -245,8 +245,13 @@ public:
     /// Runs to end_time. Throws SolverError on instability (NaN, energy growth, inverted element),
     /// InputError on a fixed step above critical.
     RunSummary run();
-    /// Called at every history sample (after the sample is stored), e.g. to stop early or probe.
+    /// Called at every history sample (after the sample is stored), e.g. to probe the state or to
+    /// end the run early with request_stop().
     std::function<void(const ExplicitSolver&)> observer;
+    /// Ends the run after the current cycle (like LS-DYNA's sense switch "sw1"): for an observer
+    /// that knows the event of interest is over, e.g. contact has ended. The summary's end_time is
+    /// the time reached.
+    void request_stop() const { stop_requested_ = true; }
 
     const NodalState& state() const { return s_; }
     const History& history() const { return history_; }
@@ -292,6 +297,7 @@ private:
     std::vector<std::array<double, 3>> target_;  // prescribed velocity per constrained node (NaN: free)
     std::vector<int> target_index_;              // per node: index into target_, or -1
     long element_cycles_ = 0;
+    mutable bool stop_requested_ = false;  // set by request_stop() from the observer
 };
 
 }  // namespace fem

@@ -4,13 +4,18 @@ set datafile commentschars '#'
 set datafile missing 'nan'
 set grid
 
-# Fig 3-21: reaction force on the object (2 ms means), general case.
+# Columns of case-<name>.dat: 1 t, 2 |F| CFC 60, 3 Fx, 4 Fy, 5 finger stress (CFC 60), 6 object stress (CFC 60),
+# 7-8 contact point, 9 |F| 2 ms means, 10 contact force, 11-12 raw stress maxima over 2 ms.
+
+# Fig 3-21: reaction force at the sensor, general case.
 set terminal @term size 900,500 enhanced font 'sans,12' background rgb 'white'
 set output figures.'/fig-3-21.'.ext
-set title 'Fig 3-21  Reaction force on the object (alpha 7.5 1/s, rigid object)'
+set title 'Fig 3-21  Reaction force at the sensor (alpha 7.5 1/s, aluminium object)'
 set xlabel 'time (s)'
 set ylabel 'force (N)'
-plot results.'/case-alpha-7.5.dat' using 1:2 with lines lw 1.5 title '|F| (2 ms means)'
+plot results.'/case-alpha-7.5.dat' using 1:9 with lines lc rgb '#bbbbbb' title '|F|, 2 ms means', \
+     results.'/case-alpha-7.5.dat' using 1:2 with lines lw 2 lc rgb '#1f77b4' title '|F|, SAE J211 CFC 60', \
+     results.'/case-alpha-7.5.dat' using 1:10 with lines lw 1 dt 2 lc rgb '#d62728' title 'contact force (2 ms means)'
 
 # Fig 3-22: contact location (force-weighted centroid) on the object.
 set output figures.'/fig-3-22.'.ext
@@ -32,9 +37,39 @@ set size ratio -1
 set parametric
 plot 101.6+99.1*cos(t), 184.15+67.3*sin(t) with lines lc rgb 'black' lw 2 title 'object', \
      82.55*cos(t), 82.55*sin(t) with lines lc rgb 'gray' title 'drum', \
-     results.'/fig-3-20.dat' using 1:2 with lines lc rgb '#1f77b4' title 'finger'
+     results.'/outline-alpha-7.5.dat' using 1:2 with lines lc rgb '#1f77b4' title 'finger'
 unset parametric
 set size noratio
+
+# Figs 3-26..3-29: deformed shapes for alpha 1, 7.5, 180 and 600 (outlines every 0.05 s).
+set output figures.'/fig-3-26-29.'.ext
+set terminal @term size 1000,900 enhanced font 'sans,11' background rgb 'white'
+set multiplot layout 2,2 title 'Figs 3-26..3-29  Finger outlines every 0.05 s'
+set size ratio -1
+set parametric
+unset key
+do for [a in '1 7.5 180 600'] {
+    set title 'alpha '.a.' 1/s'
+    plot 101.6+99.1*cos(t), 184.15+67.3*sin(t) with lines lc rgb 'black' lw 2, \
+         82.55*cos(t), 82.55*sin(t) with lines lc rgb 'gray', \
+         results.'/outline-alpha-'.a.'.dat' using 1:2 with lines lc rgb '#1f77b4'
+}
+unset multiplot
+unset parametric
+set key
+set size noratio
+set terminal @term size 900,500 enhanced font 'sans,12' background rgb 'white'
+
+# Fig 3-30: contact start and end for each alpha (contact force above 2 % of its maximum).
+set output figures.'/fig-3-30.'.ext
+set title 'Fig 3-30  Contact interval vs alpha (E_{finger} 6.1 MPa, aluminium object)'
+set xlabel 'time (s)'
+set ylabel 'alpha (1/s)'
+set logscale y
+set yrange [0.5:1000]
+plot results.'/contact-instants.dat' using 2:1:2:3:1:1 with xyerrorbars lw 2 pt 7 title 'contact start .. end'
+unset logscale y
+set autoscale y
 
 # Figs 3-23..3-25: effect of the finger damping coefficient.
 set size noratio
@@ -45,9 +80,7 @@ do for [q in 'finger object force'] {
     set output figures.'/fig-3-'.num.'.'.ext
     set title 'Fig 3-'.num.'  Effect of alpha on the '.((q eq 'force') ? 'reaction force' : 'max '.q.' stress')
     set ylabel (q eq 'force') ? 'force (N)' : 'max von Mises stress (MPa)'
-    plot results.'/case-alpha-7.5.dat' using 1:col with lines lw 1.5 title 'alpha 7.5', \
-         results.'/case-alpha-180.dat' using 1:col with lines lw 1.5 title 'alpha 180', \
-         results.'/case-alpha-600.dat' using 1:col with lines lw 1.5 title 'alpha 600'
+    plot for [a in '1 7.5 20 50 180 600'] results.'/case-alpha-'.a.'.dat' using 1:col with lines lw 1.5 title 'alpha '.a
 }
 
 # Figs 3-31..3-33 and 3-34..3-36: finger and object modulus (three panels each).

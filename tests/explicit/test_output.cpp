@@ -223,3 +223,25 @@ TEST(ExplicitLoads, PrescribedMotionIsFollowedExactly) {
     solver.run();
     EXPECT_LT(worst, 1e-12);
 }
+
+// An observer can end the run early (e.g. once contact is over); the summary reports the time reached.
+TEST(ExplicitOutput, ObserverCanStopTheRun) {
+    Mesh mesh = box_hex8(0.1, 0.02, 0.02, 5, 1, 1, "bar");
+    ExplicitModel model(mesh);
+    model.add_hex8("bar", kSteel);
+    model.fix(mesh.node_set("x0"), Dofs::all());
+    model.add_nodal_force(mesh.node_set("x1"), Vec3(0, 10, 0), Curve({{0, 0}, {1e-4, 1}}));
+    ExplicitOptions o;
+    o.end_time = 1e-3;
+    o.progress = false;
+    o.print_summary = false;
+    o.history_interval = 1e-5;
+    ExplicitSolver solver(model, o);
+    solver.observer = [](const ExplicitSolver& s) {
+        if (s.time() >= 2e-4) s.request_stop();
+    };
+    const RunSummary sum = solver.run();
+    EXPECT_GE(sum.end_time, 2e-4);
+    EXPECT_LT(sum.end_time, 2e-4 + 2e-5);  // stopped at the first sample at or after 0.2 ms
+    EXPECT_NEAR(solver.history().time.back(), sum.end_time, 1e-15);
+}
