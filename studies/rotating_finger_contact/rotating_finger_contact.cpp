@@ -101,7 +101,9 @@ Result run_case(const Case& c, double finger_h, const std::filesystem::path& out
     // y, major axis x -> out of plane -z (README: the mounting is reconstructed).
     for (auto& p : finger.nodes) p = Vec3(kDrumRadius + p.z(), p.y(), -p.x());
     const int n_finger = finger.node_count();
-    Mesh object = fem::finger::hex_finger({kObjA, kObjB, kObjT}, c.e_object > 0 ? 12e-3 : 6e-3, "object");
+    // ROTFINGER_OBJECT_H=<m> sets the deformable object's element length (convergence runs).
+    const double object_h = std::getenv("ROTFINGER_OBJECT_H") ? std::atof(std::getenv("ROTFINGER_OBJECT_H")) : 12e-3;
+    Mesh object = fem::finger::hex_finger({kObjA, kObjB, kObjT}, c.e_object > 0 ? object_h : 6e-3, "object");
     object.translate(kObjectCentre + Vec3(0, 0, -0.5 * kObjT));
     Mesh mesh = finger;
     mesh.append(object);
