@@ -25,7 +25,7 @@ STUDIES := $(sort $(notdir $(patsubst %/,%,$(dir $(wildcard studies/*/CMakeLists
 
 # Runs every study even when one fails, writes the report, then reports failure if any study failed.
 all: deps build
-	@status=0; for s in $(STUDIES); do echo "== $$s"; $(BUILD)/bin/$$s --figures figures || status=1; done; \
+	@status=0; for s in $(STUDIES); do echo "== $$s"; $(BUILD)/bin/$$s --figures figures --full || status=1; done; \
 	$(BUILD)/bin/fem-report --reference reference --results $(BUILD)/results --figures figures; \
 	exit $$status
 

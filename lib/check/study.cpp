@@ -86,11 +86,13 @@ const std::vector<std::string>& study_order() {
 namespace {
 
 void usage(const std::string& name) {
-    std::cout << "usage: " << name << " [--results DIR] [--figures DIR] [--reference FILE]\n"
+    std::cout << "usage: " << name << " [--results DIR] [--figures DIR] [--reference FILE] [--full]\n"
               << "  Runs the study, compares with reference/" << name << ".toml and writes DIR/checks.json.\n"
               << "  --results DIR    where data, checks.json and runs.json go (default build/results/" << name << ")\n"
               << "  --figures DIR    draw the figures there with gnuplot (default: no figures)\n"
-              << "  --reference FILE the reference values (default reference/" << name << ".toml)\n";
+              << "  --reference FILE the reference values (default reference/" << name << ".toml)\n"
+              << "  --full           also run the thesis-size runs that CTest leaves out (make all passes it;\n"
+              << "                   the study's README says what they are); checks are the same\n";
 }
 
 std::string join_joined(const std::string& a, const std::string& b) {
@@ -114,6 +116,7 @@ Study::Study(std::string name, int argc, char** argv) : name_(std::move(name)) {
         if (arg == "--results") results_dir_ = value();
         else if (arg == "--figures") figures_dir_ = value();
         else if (arg == "--reference") reference_path = value();
+        else if (arg == "--full") full_ = true;
         else if (arg == "--help" || arg == "-h") {
             usage(name_);
             std::exit(0);

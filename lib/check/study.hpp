@@ -61,6 +61,9 @@ public:
     /// Where figures are drawn (figures/ for `make`, build/figures for CTest); empty: none.
     const std::filesystem::path& figures_dir() const { return figures_dir_; }
     const ReferenceFile& reference() const { return reference_; }
+    /// --full: also run the thesis-size runs CTest leaves out (`make all` passes it). They may only
+    /// add shown results: checks.json must be the same with and without it.
+    bool full() const { return full_; }
 
     /// Numeric check of `reproduced` against the entry `id`.
     const CheckRecord& check(std::string_view id, double reproduced, std::string note = {});
@@ -96,6 +99,7 @@ private:
 
     std::string name_;
     std::filesystem::path results_dir_, figures_dir_, source_dir_;
+    bool full_ = false;
     ReferenceFile reference_;
     std::deque<CheckRecord> records_;  // deque: references handed out stay valid
     std::vector<std::string> checked_ids_;

@@ -79,6 +79,7 @@ void internal_force(const Reference<N, Q>& ref, const hex8::Hex8Material& mat, s
                     std::span<const Vec3> v, Result<N>& out) {
     const double mu = mat.mu, lambda = mat.lambda;
     for (auto& f : out.force) f.setZero();
+    for (auto& f : out.viscous_force) f.setZero();
     out.strain_energy = out.viscous_power = out.volumetric_strain_rate = 0.0;
     out.min_jacobian = std::numeric_limits<double>::infinity();
     out.cauchy.setZero();
@@ -123,7 +124,9 @@ void internal_force(const Reference<N, Q>& ref, const hex8::Hex8Material& mat, s
             }
             if (mat.rayleigh_beta > 0.0) sv += mat.rayleigh_beta * (2.0 * mu * D + lambda * trD * Mat3::Identity());
             out.viscous_power += w * J * (sv.cwiseProduct(D)).sum();
-            P += J * sv * finvt;  // first Piola-Kirchhoff of the viscous Cauchy stress
+            const Mat3 Pv = J * sv * finvt;  // first Piola-Kirchhoff of the viscous Cauchy stress
+            P += Pv;
+            for (int a = 0; a < N; ++a) out.viscous_force[a].noalias() += w * (Pv * g[a]);
         }
         for (int a = 0; a < N; ++a) out.force[a].noalias() += w * (P * g[a]);
     }

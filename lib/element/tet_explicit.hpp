@@ -51,6 +51,7 @@ Tet10Reference make_tet10_reference(std::span<const Vec3> X, const char* element
 template <int N>
 struct Result {
     std::array<Vec3, N> force;         // internal (resisting) nodal forces
+    std::array<Vec3, N> viscous_force; // the viscous part of `force` (bulk viscosity, beta damping)
     double strain_energy = 0.0;        // sum_q w_q W(F_q)
     double viscous_power = 0.0;        // sum_q w_q J sigma_visc : D [W]
     double volumetric_strain_rate = 0.0;  // tr D, averaged over the current volume

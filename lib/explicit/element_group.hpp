@@ -34,6 +34,10 @@ struct NodalState {
     std::vector<Vec3> moment;          // internal (resisting) moments being accumulated
     std::vector<double> inertia;       // isotropic lumped rotational inertia
     std::vector<Mat3> rotation;        // nodal triad relative to the reference
+    // The viscous part of f (bulk viscosity, stiffness damping), per node. Allocated by the solver
+    // only when some group books it (ElementGroup::adds_viscous_forces); empty otherwise, and then
+    // no group writes it. The solver books its work like the mass damping (solver.cpp).
+    std::vector<Vec3> fv;
     int node_count() const { return static_cast<int>(x.size()); }
     int rotational_count() const { return static_cast<int>(rot_node.size()); }
 };
@@ -42,7 +46,7 @@ struct NodalState {
 struct GroupForceResult {
     double internal_energy = 0.0;    // stored elastic energy (hyperelastic: exact state function)
     double hourglass_energy = 0.0;   // stored hourglass energy
-    double viscous_power = 0.0;      // bulk viscosity + stiffness damping dissipation rate [W]
+    double viscous_power = 0.0;      // bulk viscosity + stiffness damping dissipation rate [W] at v(n-1/2)
     double dt_min = std::numeric_limits<double>::infinity();  // smallest critical step (unscaled by 0.9)
     int dt_element = -1;             // element that has it (index within the block)
     int bad_element = -1;            // first inverted / non-finite element, -1 when all fine
@@ -74,6 +78,22 @@ public:
     virtual GroupForceResult internal_forces(NodalState& s, bool compute_dt) = 0;
     /// Per-element von Mises stress (beams: outer-fibre stress) at the last force evaluation.
     virtual std::vector<double> element_stress() const = 0;
+
+    /// True when the group has viscous forces (bulk viscosity, stiffness damping) and, whenever
+    /// s.fv is non-empty, internal_forces also adds their nodal values to s.fv (they stay in s.f).
+    /// The solver then books their work exactly as the central-difference update does it (force at
+    /// n times (v(n-1/2) + v(n+1/2))/2); for other groups it books viscous_power x dt (first order:
+    /// a few % to tens of % off under strong bulk viscosity, tests/explicit).
+    virtual bool adds_viscous_forces() const { return false; }
+    /// Scales the group's critical steps by r (the solver's measured stability factor, <= 1),
+    /// applied before any stiffness-damping reduction of the step. Returns false when the group
+    /// does not support it: the solver then multiplies the step the group returns by r.
+    virtual bool set_stability_factor(double r) { return false; }
+    /// An upper bound on the group's contribution to omega_max without an eigen-solve of the whole
+    /// model: the largest frequency of its elements, each alone with its lumped masses (element
+    /// eigenvalue inequality, Irons; Hughes Sec 9.1.5). 0 when the group does not know one. Used
+    /// only when the solver's Lanczos measurement does not converge.
+    virtual double element_omega_bound() const { return 0.0; }
 
     std::string part;      // part name (from the block)
     int block = -1;        // block index in the mesh

@@ -4,7 +4,6 @@
 #include <cmath>
 #include <limits>
 
-#include <Spectra/SymEigsSolver.h>
 #include <fmt/format.h>
 
 #include "core/error.hpp"
@@ -16,44 +15,6 @@ namespace {
 constexpr ElementShape shape_of(int n) { return n == 4 ? ElementShape::Tet4 : ElementShape::Tet10; }
 // Below this many elements the loop runs on one thread (fork/join costs more than the work).
 constexpr int kTetParallelMin = 1024;
-
-// y = M^-1/2 K M^-1/2 x for the group alone (free-free, its own lumped masses), K the stiffness at
-// rest applied element by element: the linearized neo-Hookean stress is sigma = lambda tr(eps) I +
-// 2 mu eps with eps = sym(grad u), f_a = sum_q w_q sigma dN_a/dX (tet::linear_stiffness, matrix-free).
-template <int N, int Q>
-class GroupStiffnessOp {
-public:
-    using Scalar = double;
-    GroupStiffnessOp(const std::vector<std::array<int, N>>& conn, const std::vector<tet::Reference<N, Q>>& refs,
-                     const hex8::Hex8Material& mat, std::vector<double> inv_sqrt_mass)
-        : conn_(conn), refs_(refs), mat_(mat), s_(std::move(inv_sqrt_mass)) {}
-    int rows() const { return static_cast<int>(3 * s_.size()); }
-    int cols() const { return rows(); }
-    void perform_op(const double* x, double* y) const {
-        std::fill(y, y + rows(), 0.0);
-        for (std::size_t e = 0; e < conn_.size(); ++e) {
-            std::array<Vec3, N> u;
-            for (int a = 0; a < N; ++a) u[a] = s_[conn_[e][a]] * Vec3(x[3 * conn_[e][a]], x[3 * conn_[e][a] + 1], x[3 * conn_[e][a] + 2]);
-            for (int q = 0; q < Q; ++q) {
-                const auto& g = refs_[e].dndx[q];
-                Mat3 H = Mat3::Zero();
-                for (int a = 0; a < N; ++a) H.noalias() += u[a] * g[a].transpose();
-                const Mat3 eps = 0.5 * (H + H.transpose());
-                const Mat3 sigma = mat_.lambda * eps.trace() * Mat3::Identity() + 2.0 * mat_.mu * eps;
-                for (int a = 0; a < N; ++a) {
-                    const Vec3 f = refs_[e].weight[q] * s_[conn_[e][a]] * (sigma * g[a]);
-                    for (int i = 0; i < 3; ++i) y[3 * conn_[e][a] + i] += f[i];
-                }
-            }
-        }
-    }
-
-private:
-    const std::vector<std::array<int, N>>& conn_;  // in the group's local node numbering
-    const std::vector<tet::Reference<N, Q>>& refs_;
-    const hex8::Hex8Material& mat_;
-    std::vector<double> s_;  // 1 / sqrt(lumped mass) per local node
-};
 
 }  // namespace
 
@@ -76,7 +37,7 @@ TetGroup<N, Q>::TetGroup(const Mesh& mesh, int block, const ElasticMaterial& mat
     refs_.reserve(n);
     mass_.resize(n);
     element_ratio_.resize(n);
-    ratio_.resize(n);
+    element_omega_.resize(n);
     table_dt_.resize(n);
     std::array<Vec3, N> X;
     for (int e = 0; e < n; ++e) {
@@ -96,6 +57,7 @@ TetGroup<N, Q>::TetGroup(const Mesh& mesh, int block, const ElasticMaterial& mat
         const double omega = tet::element_omega_max(tet::linear_stiffness(refs_[e], kmat_), mass_[e]);
         const double dt_table = cfl::critical_time_step(shape, X, material_);
         table_dt_[e] = dt_table;
+        element_omega_[e] = omega;
         element_ratio_[e] = (2.0 / omega) / dt_table;
     }
     mass_scale_.assign(n, 1.0);
@@ -107,38 +69,20 @@ TetGroup<N, Q>::TetGroup(const Mesh& mesh, int block, const ElasticMaterial& mat
     bad_.assign(n, 0);
     fe_.resize(static_cast<std::size_t>(n) * N);
     scatter_ = par::NodeScatter::build(conn_, mesh.node_count());
-    // The factor in use: never above 1 (where the measured limit is above Table 2-1's, as for tet4 on
-    // unstructured meshes, the thesis's Table 2-1 step is kept, as the solver does for hexahedra).
-    for (int e = 0; e < n; ++e) ratio_[e] = std::min(1.0, element_ratio_[e]);
-    if (options.measure_group_limit && n > 0) {
-        // The group's own omega_max (free-free, its lumped masses) by Lanczos: also a bound for the
-        // assembled model (supports and other parts' mass and stiffness only lower it: the same
-        // subassembly inequality as for single elements), and much tighter than the element bound on
-        // unstructured meshes (Gmsh finger: the element bound is 0.33 (tet4) / 0.47 (tet10) of the
-        // exact limit, tests/explicit/test_tet_explicit.cpp).
-        std::vector<int> first(scatter_.nodes.back() + 1, -1);  // global node -> group-local index
-        for (int k = 0; k < static_cast<int>(scatter_.nodes.size()); ++k) first[scatter_.nodes[k]] = k;
-        std::vector<std::array<int, N>> local(n);
-        for (int e = 0; e < n; ++e)
-            for (int a = 0; a < N; ++a) local[e][a] = first[conn_[e][a]];
-        std::vector<double> m(scatter_.nodes.size(), 0.0);
-        for (int e = 0; e < n; ++e)
-            for (int a = 0; a < N; ++a) m[local[e][a]] += mass_[e][a];
-        for (double& x : m) x = 1.0 / std::sqrt(x);
-        GroupStiffnessOp<N, Q> op(local, refs_, kmat_, std::move(m));
-        const double tol = 1e-6;
-        Spectra::SymEigsSolver<GroupStiffnessOp<N, Q>> eigs(op, 1, std::min(op.rows(), 40));
-        eigs.init();
-        eigs.compute(Spectra::SortRule::LargestAlge, 2000, tol);
-        if (eigs.info() == Spectra::CompInfo::Successful && eigs.eigenvalues()[0] > 0.0) {
-            // Ritz value theta: the residual bound puts an eigenvalue within tol theta of it, so
-            // lambda_max <= theta (1 + tol) when Lanczos has found the top of the spectrum.
-            const double omega = std::sqrt(eigs.eigenvalues()[0] * (1.0 + tol));
-            const double table_min = *std::min_element(table_dt_.begin(), table_dt_.end());
-            group_ratio_ = (2.0 / omega) / table_min;  // min_e group_ratio_ T_e = 2 / omega
-            ratio_.assign(n, std::min(1.0, group_ratio_));
-        }
-    }
+}
+
+template <int N, int Q>
+bool TetGroup<N, Q>::set_stability_factor(double r) {
+    if (!(r > 0.0 && r <= 1.0)) throw InputError(fmt::format("part '{}': stability factor {} not in (0, 1]", part, r));
+    factor_ = r;
+    return true;
+}
+
+template <int N, int Q>
+double TetGroup<N, Q>::element_omega_bound() const {
+    double w = 0.0;  // omega_e ~ 1 / sqrt(density): selective mass scaling lowers it
+    for (int e = 0; e < size(); ++e) w = std::max(w, element_omega_[e] / std::sqrt(mass_scale_[e]));
+    return w;
 }
 
 template <int N, int Q>
@@ -166,7 +110,7 @@ double TetGroup<N, Q>::mass() const {
 template <int N, int Q>
 std::vector<double> TetGroup<N, Q>::reference_time_steps() const {
     std::vector<double> dt(table_dt_.size());
-    for (std::size_t e = 0; e < dt.size(); ++e) dt[e] = ratio_[e] * table_dt_[e];  // unscaled
+    for (std::size_t e = 0; e < dt.size(); ++e) dt[e] = table_dt_[e];  // unscaled
     return dt;
 }
 
@@ -180,6 +124,9 @@ template <int N, int Q>
 GroupForceResult TetGroup<N, Q>::internal_forces(NodalState& s, bool compute_dt) {
     constexpr ElementShape shape = shape_of(N);
     const int n = size();
+    // The viscous parts go to their own slots when the solver books them (NodalState::fv).
+    const bool book_viscous = !s.fv.empty() && adds_viscous_forces();
+    if (book_viscous && fve_.size() != fe_.size()) fve_.assign(fe_.size(), Vec3::Zero());
 #pragma omp parallel for schedule(dynamic, 256) if (n >= kTetParallelMin)
     for (int e = 0; e < n; ++e) {
         std::array<Vec3, N> x, v;
@@ -193,17 +140,21 @@ GroupForceResult TetGroup<N, Q>::internal_forces(NodalState& s, bool compute_dt)
         bad_[e] = !(r.min_jacobian > 0.0) || !std::isfinite(r.strain_energy);
         if (bad_[e]) {
             for (int a = 0; a < N; ++a) fe[a].setZero();
+            if (book_viscous)
+                for (int a = 0; a < N; ++a) fve_[static_cast<std::size_t>(e) * N + a].setZero();
             ie_[e] = visc_[e] = 0.0;
             continue;
         }
         for (int a = 0; a < N; ++a) fe[a] = r.force[a];
+        if (book_viscous)
+            for (int a = 0; a < N; ++a) fve_[static_cast<std::size_t>(e) * N + a] = r.viscous_force[a];
         ie_[e] = r.strain_energy;
         visc_[e] = r.viscous_power;
         von_mises_[e] = r.von_mises;
         cauchy_[e] = r.cauchy;
         if (compute_dt) {
-            // Table 2-1 on the current nodes (with the Q term) times the element's stability ratio.
-            double dt = ratio_[e] *
+            // Table 2-1 on the current nodes (with the Q term) times the measured stability factor.
+            double dt = factor_ *
                         cfl::critical_time_step(shape, x, material_, kmat_.bulk_viscosity ? r.volumetric_strain_rate : 0.0,
                                                 kmat_.bulk) *
                         std::sqrt(mass_scale_[e]);
@@ -215,6 +166,7 @@ GroupForceResult TetGroup<N, Q>::internal_forces(NodalState& s, bool compute_dt)
         }
     }
     scatter_.add_to(fe_, s.f, n >= kTetParallelMin);
+    if (book_viscous) scatter_.add_to(fve_, s.fv, n >= kTetParallelMin);
     GroupForceResult out;
     for (int e = 0; e < n; ++e) {  // fixed order: the same bits on any number of threads
         if (bad_[e]) {

@@ -5,28 +5,20 @@
 // Time step. Table 2-1 gives the tetrahedron the minimum altitude over the dilatational wave
 // speed. That is not a stability bound for the tet10 with HRZ masses (its step is set by the corner
 // sub-tetrahedra, about half the size): the Table 2-1 step over the exact limit is 2.78 on a
-// structured block and 1.55 on a Gmsh finger mesh (tests/explicit/test_tet_explicit.cpp). So the
-// group replaces it by a measured limit, once, on the reference geometry:
-//  1. element bound: each element's own largest frequency omega_e (its 3N x 3N linear stiffness
-//     against its lumped masses, dense eigensolver). The element eigenvalue inequality
-//     omega_max(assembled) <= max_e omega_e (Irons; Hughes Sec 9.1.5) makes min_e 2 / omega_e a
-//     guaranteed bound, but a pessimistic one on unstructured meshes (0.33 x the exact limit for
-//     tet4, 0.47 for tet10 on the Gmsh finger);
-//  2. group bound (default, TetGroupOptions::measure_group_limit): omega_max of the whole group,
-//     free-free with its own lumped masses, by Lanczos (Spectra) on the matrix-free linear
-//     stiffness. The same subassembly inequality makes it a bound for any model containing the
-//     group (supports, other parts and their masses only lower omega_max). Falls back to 1. when
-//     Lanczos does not converge.
-// With the measured limit written as a factor r on the Table 2-1 steps (r_e = (2/omega_e)/T_e, or
-// r = (2/omega_group)/min_e T_e), capped at 1 (where Table 2-1 is already below the measured limit,
-// as for tet4 on the Gmsh finger: 0.54 of it, the thesis's step is kept, like the solver's
-// hexahedron stability factor), every cycle returns r x fem::cfl::critical_time_step(current
-// nodes, with the bulk-viscosity Q term): the Table 2-1 rule follows the deformation (altitudes
-// shrink in compression), the measured factor makes it a bound at rest. Stiffness damping beta
-// lowers it as for the hexahedron: dt <= (2 / omega)(sqrt(1 + xi^2) - xi), xi = beta omega / 2.
-// Selective mass scaling multiplies an element's step by sqrt(density factor) as for the
-// hexahedron; the factor r is not re-measured after scaling (a scaled model is no longer bounded
-// by the measurement: keep the usual 0.9 and check the energy balance).
+// structured block and 1.55 on a Gmsh finger mesh (tests/explicit/test_tet_explicit.cpp). The
+// solver therefore measures omega_max of all its solid groups together once at the start (Lanczos,
+// ExplicitSolver, the same code for hexahedra and tetrahedra) and hands each group the factor r on
+// its Table 2-1 steps (set_stability_factor). Every cycle the group returns r x
+// fem::cfl::critical_time_step(current nodes, with the bulk-viscosity Q term): the Table 2-1 rule
+// follows the deformation (altitudes shrink in compression), the measured factor makes it a bound
+// at rest. Stiffness damping beta lowers it as for the hexahedron: dt <= (2 / omega)(sqrt(1 + xi^2)
+// - xi), xi = beta omega / 2, applied after r. Selective mass scaling multiplies an element's step
+// by sqrt(density factor) as for the hexahedron.
+// The element bound (each element's own largest frequency omega_e, its 3N x 3N linear stiffness
+// against its lumped masses, dense eigensolver; omega_max(assembled) <= max_e omega_e, Irons;
+// Hughes Sec 9.1.5) is kept as the fallback when the Lanczos measurement does not converge
+// (element_omega_bound): guaranteed but pessimistic on unstructured meshes (0.33 x the exact limit
+// for tet4, 0.47 for tet10 on the Gmsh finger).
 //
 // Usage (a finger meshed with Gmsh in tet10, part "finger"):
 //   ExplicitModel model(mesh);
@@ -50,9 +42,6 @@ struct TetGroupOptions {
     bool bulk_viscosity = true;   // Table 2-1 Q terms
     BulkViscosity bulk{};         // C0 = 1.5, C1 = 0.06
     double rayleigh_beta = 0.0;   // stiffness-proportional damping beta of Eq 2-39 [s]
-    // Measure the group's own omega_max once (Lanczos, see above) and use it instead of the
-    // per-element bound; false: the element bound only (no eigen-solve of the whole group).
-    bool measure_group_limit = true;
 };
 
 /// A block of tet4 (N = 4, one point) or tet10 (N = 10, four points) elements, one material.
@@ -69,19 +58,19 @@ public:
     void set_mass_scaling(std::vector<double> factor) override;
     GroupForceResult internal_forces(NodalState& s, bool compute_dt) override;
     std::vector<double> element_stress() const override { return von_mises_; }
+    bool adds_viscous_forces() const override { return kmat_.bulk_viscosity || beta_ > 0.0; }
+    bool set_stability_factor(double r) override;
+    double element_omega_bound() const override;
 
     const ElasticMaterial& material() const { return material_; }
     const tet::Reference<N, Q>& reference(int e) const { return refs_[e]; }
     const std::array<int, N>& connectivity(int e) const { return conn_[e]; }
     /// Element e's lumped nodal masses (unscaled).
     const std::array<double, N>& lumped_mass(int e) const { return mass_[e]; }
-    /// The factor on element e's Table 2-1 step in use: min(1, group_stability_ratio()) when
-    /// measured, else min(1, element_stability_ratio(e)).
-    double stability_ratio(int e) const { return ratio_[e]; }
+    /// The factor on the Table 2-1 steps in use (set by the solver's measurement; 1 before).
+    double stability_factor() const { return factor_; }
     /// r_e = (2 / omega_e) / Table 2-1 step of the reference element (the element bound).
     double element_stability_ratio(int e) const { return element_ratio_[e]; }
-    /// (2 / omega_group) / min_e Table 2-1 step on the reference (0 when not measured).
-    double group_stability_ratio() const { return group_ratio_; }
     /// Elastic Cauchy stress (current-volume average) of element e at the last force evaluation.
     const Mat3& cauchy(int e) const { return cauchy_[e]; }
 
@@ -92,12 +81,12 @@ private:
     std::vector<std::array<int, N>> conn_;
     std::vector<tet::Reference<N, Q>> refs_;
     std::vector<std::array<double, N>> mass_;
-    std::vector<double> ratio_, element_ratio_, table_dt_, mass_scale_, von_mises_;
-    double group_ratio_ = 0.0;
+    std::vector<double> element_ratio_, element_omega_, table_dt_, mass_scale_, von_mises_;
+    double factor_ = 1.0;
     std::vector<Mat3> cauchy_;
     // Deterministic assembly as Hex8Group: element forces to fe_, then each node sums its slots in
     // a fixed order (CSR node -> slots).
-    std::vector<Vec3> fe_;
+    std::vector<Vec3> fe_, fve_;  // fve_: viscous parts, only when the solver books them (NodalState::fv)
     std::vector<double> ie_, visc_, dt_;
     std::vector<unsigned char> bad_;
     par::NodeScatter scatter_;  // the group's nodes and their element force slots

@@ -47,8 +47,12 @@ set xlabel 'time (s)'
 set ylabel 'tip deflection (mm, downward)'
 set yrange [-120:150]
 set key top right
+# With --full the 100-element curve is the thesis's whole 4 s (fig-2-18-fe100-4s.dat), else the first 0.85 s.
+full = system('test -f '.results.'/fig-2-18-fe100-4s.dat && echo 1 || echo 0') + 0
+fe100 = full ? results.'/fig-2-18-fe100-4s.dat' : results.'/fig-2-18-fe100.dat'
+fe100_title = full ? 'FE, 100 elements (Table 2-9), 4 s, its identified alpha' : 'FE, 100 elements (Table 2-9), first 0.85 s'
 plot results.'/fig-2-18-fe.dat' using 1:2 with lines lw 1 lc rgb '#1f77b4' title 'FE, 20 elements, identified alpha', \
-     results.'/fig-2-18-fe100.dat' using 1:2 with lines lw 2 lc rgb '#2ca02c' title 'FE, 100 elements (Table 2-9), first 0.85 s', \
+     fe100 using 1:2 with lines lw 2 lc rgb '#2ca02c' title fe100_title, \
      results.'/fig-2-18-fe.dat' using 1:3 with lines lw 1 dt 3 lc rgb '#ff7f0e' title 'FE, 20 elements, thesis alpha = 0.165', \
      results.'/fig-2-18-sdof-overlay.dat' using 1:2 with lines lw 1 dt 2 lc rgb '#d62728' title 'SDOF (zeta 0.0055, 16.33 rad/s) from the first FE peak'
 set title 'Table 2-7 SDOF model of the measured tip response (release from rest at 55.5)'
