@@ -34,21 +34,44 @@ unset yrange
 set xtics autofreq
 set key default
 
-# Fig 3-5: tip responses of the hexahedral modelling cases (Case B to 30 ms only: cost).
-set terminal @term size 900,560 enhanced font 'sans,12' background rgb 'white'
+# Figs 3-5 and 3-6: the four modelling cases of Table 3-2 under the tip impulse, alpha = 180 1/s.
+# Case A runs the thesis's 0.2 s, B and C 30 ms, D 1 ms by default (cost; --full, i.e. make all, runs
+# it to 65 ms): the lower panels zoom on the first 30 ms, where all four can be compared.
+stats results.'/fig-3-5-D.dat' using 1 nooutput
+d_end = STATS_max
+titleA = 'Case A (5 x 5 mapped hex8, 725)'
+titleB = 'Case B (9 x 9 mapped hex8, 4698; 30 ms)'
+titleC = 'Case C (Gmsh tet10, 4676; 30 ms)'
+titleD = sprintf('Case D (reconstructed detailed, tet10, 16633; %.0f ms)', d_end)
+set terminal @term size 900,900 enhanced font 'sans,12' background rgb 'white'
 set output figures.'/fig-3-5.'.ext
-set title 'Fig 3-5  Tip response of the 4.5-inch finger to a tip impulse, alpha = 180 1/s'
+set multiplot layout 2,1 title 'Fig 3-5  Tip response of the 4.5-inch finger to a tip impulse, alpha = 180 1/s'
 set xlabel 'time (ms)'
 set ylabel 'tip deflection (mm)'
-plot results.'/fig-3-5-A.dat' using 1:2 with lines lw 2 lc rgb '#1f77b4' title 'Case A (5 x 5 mapped hexahedra, 725)', \
-     results.'/fig-3-5-B.dat' using 1:2 with lines lw 2 dt 2 lc rgb '#d62728' title 'Case B (9 x 9 mapped hexahedra, 4698)'
+set key top right
+do for [panel=1:2] {
+    if (panel == 1) { set xrange [0:200] } else { set xrange [0:30]; set key bottom center }
+    plot results.'/fig-3-5-A.dat' using 1:2 with lines lw 2 lc rgb '#1f77b4' title titleA, \
+         results.'/fig-3-5-B.dat' using 1:2 with lines lw 2 dt 2 lc rgb '#d62728' title titleB, \
+         results.'/fig-3-5-C.dat' using 1:2 with lines lw 2 dt 4 lc rgb '#2ca02c' title titleC, \
+         results.'/fig-3-5-D.dat' using 1:2 with lines lw 3 lc rgb '#000000' title titleD
+}
+unset multiplot
+set key default
 
-# Fig 3-6: maximum von Mises stress of the finger.
 set output figures.'/fig-3-6.'.ext
-set title 'Fig 3-6  Maximum equivalent stress of the finger, alpha = 180 1/s'
+set multiplot layout 2,1 title 'Fig 3-6  Maximum equivalent (von Mises) stress of the finger, alpha = 180 1/s'
 set ylabel 'max von Mises stress (MPa)'
-plot results.'/fig-3-6-A.dat' using 1:2 with lines lw 2 lc rgb '#1f77b4' title 'Case A', \
-     results.'/fig-3-6-B.dat' using 1:2 with lines lw 2 dt 2 lc rgb '#d62728' title 'Case B'
+do for [panel=1:2] {
+    if (panel == 1) { set xrange [0:200] } else { set xrange [0:30] }
+    plot results.'/fig-3-6-A.dat' using 1:2 with lines lw 2 lc rgb '#1f77b4' title 'Case A', \
+         results.'/fig-3-6-B.dat' using 1:2 with lines lw 2 dt 2 lc rgb '#d62728' title 'Case B', \
+         results.'/fig-3-6-C.dat' using 1:2 with lines lw 2 dt 4 lc rgb '#2ca02c' title 'Case C', \
+         results.'/fig-3-6-D.dat' using 1:2 with lines lw 3 lc rgb '#000000' title 'Case D'
+}
+unset multiplot
+unset xrange
+set autoscale
 
 # Figs 3-11..3-14: tip responses of each finger under the trial alphas of the alpha_cr search.
 set terminal @term size 1100,800 enhanced font 'sans,11' background rgb 'white'
