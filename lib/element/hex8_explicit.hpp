@@ -99,33 +99,35 @@ double von_mises(const Mat3& s);
 //   sum_alpha gamma_alpha,a k q_alpha = sum_alpha h_alpha,a k q_alpha - (k/V0) (sum_alpha q_alpha (x) hX_alpha) B_a,
 // so the second part joins the stress term P B_a and h (entries +-1) needs no storage.
 
-/// Four elements processed together, one per lane (GCC/Clang vector extension). Each lane does
+/// Eight elements processed together, one per lane (GCC/Clang vector extension). Each lane does
 /// exactly the scalar kernel's operations in the same order (element-wise IEEE arithmetic, no
-/// reassociation), so batching changes no bit (unless a -march with FMA lets the compiler contract
-/// a * b + c differently in the two versions: then round-off); without AVX the compiler splits a
-/// Lanes operation into two SSE2 operations. Batching elements, not nodes, needs no shuffles.
-/// Alignment: without AVX, GCC aligns this 32-byte type to 16 bytes only, while the AVX2 version of
-/// the kernel (see the .cpp) loads it with aligned moves. So every Lanes object handed to the kernel
-/// must be 32-byte aligned: the structs below are alignas(32) for T = Lanes, and callers declare
-/// their Lanes arrays alignas(32).
-using Lanes = double __attribute__((vector_size(32)));
-inline constexpr int kLanes = 4;
-inline constexpr int kLanesAlign = 32;
+/// reassociation, no contraction into FMAs: the .cpp sets fp-contract=off), so
+/// batching changes no bit. The block functions are compiled for AVX-512, AVX2 and baseline x86-64
+/// and chosen at load time (see the .cpp): one AVX-512 instruction per Lanes operation, two with
+/// AVX2, four with SSE2. Batching elements, not nodes, needs no shuffles.
+/// Alignment: the baseline and AVX2 versions align this 64-byte type to less than 64 bytes, while
+/// the AVX-512 version of the kernel loads it with aligned moves. So every Lanes object handed to
+/// the kernel must be 64-byte aligned: the structs below are alignas(64) for T = Lanes, and callers
+/// declare their Lanes arrays alignas(kLanesAlign).
+using Lanes = double __attribute__((vector_size(64)));
+inline constexpr int kLanes = 8;
+inline constexpr int kLanesAlign = 64;
 
-/// Reference data in the kernel's layout: T = double for one element (304 bytes), T = Lanes for
-/// four (component i of node a of element lane l at B[i][a][l]).
+/// Reference data in the kernel's layout: T = double for one element (312 bytes), T = Lanes for
+/// kLanes elements (component i of node a of element lane l at B[i][a][l]).
 template <class T>
 struct alignas(sizeof(T)) Hex8PackedT {
     T B[3][8];      // B[i][a] = component i of B_a [m^2]
     T hx[4][3];     // hourglass_base[alpha][i] [m]
     T volume;       // V0 [m^3]
     T hourglass_k;  // stiffness k = QM 2 mu sum_a |B_a|^2 / (8 V0) [N/m]
+    T length0;      // cube root of V0 [m] (bulk viscosity length cbrt(J V0) = length0 cbrt(J))
 };
 using Hex8Packed = Hex8PackedT<double>;
-using Hex8Packed4 = Hex8PackedT<Lanes>;
+using Hex8PackedBlock = Hex8PackedT<Lanes>;
 Hex8Packed pack(const Hex8Reference& ref, const Hex8Material& mat);
-/// Puts one element's data `p` into lane `lane` of a four-element block.
-void pack_lane(const Hex8Packed& p, int lane, Hex8Packed4& block);
+/// Puts one element's data `p` into lane `lane` of a block.
+void pack_lane(const Hex8Packed& p, int lane, Hex8PackedBlock& block);
 
 /// What the kernel returns (per element, or per lane).
 template <class T>
@@ -141,16 +143,20 @@ struct alignas(sizeof(T)) Hex8KernelResultT {
     T ln_j;                    // ln det F
 };
 using Hex8KernelResult = Hex8KernelResultT<double>;
-using Hex8KernelResult4 = Hex8KernelResultT<Lanes>;
-static_assert(alignof(Hex8Packed4) == kLanesAlign && alignof(Hex8KernelResult4) == kLanesAlign);
+using Hex8KernelResultBlock = Hex8KernelResultT<Lanes>;
+static_assert(alignof(Hex8PackedBlock) == kLanesAlign && alignof(Hex8KernelResultBlock) == kLanesAlign);
 
 /// Internal forces from the nodal displacements u[i][a] = x - X and velocities v[i][a]. `length`
-/// as in internal_force() (<= 0: cube root of the current volume J V0); the four-element version
-/// always uses the cube root.
+/// as in internal_force() (<= 0: cube root of the current volume J V0); the block version always
+/// uses the cube root.
 void internal_force(const Hex8Packed& p, const Hex8Material& mat, const double (&u)[3][8], const double (&v)[3][8],
                     double length, Hex8KernelResult& out);
-void internal_force(const Hex8Packed4& p, const Hex8Material& mat, const Lanes (&u)[3][8], const Lanes (&v)[3][8],
-                    Hex8KernelResult4& out);
+void internal_force(const Hex8PackedBlock& p, const Hex8Material& mat, const Lanes (&u)[3][8], const Lanes (&v)[3][8],
+                    Hex8KernelResultBlock& out);
+
+/// ln(1 + x) as the kernel computes ln J = log1p(J - 1) (x > -1): a vectorizable log1p, within
+/// 2 ulp of std::log1p (tests/explicit).
+double kernel_log1p(double x);
 
 /// Exact volume of the trilinear hexahedron with nodes x[i][a] (node order of internal_force).
 /// Closed form of the integral of det J over the natural cube (see the .cpp); equals the 2x2x2
@@ -163,6 +169,13 @@ double exact_volume(const double (&x)[3][8]);
 /// its cost (no Gauss loop, one square root).
 double characteristic_length(const double (&x)[3][8]);
 void characteristic_length(const Lanes (&x)[3][8], Lanes& length);
+
+/// Table 2-1 critical step of the hexahedra of a block on their current nodes x[i][a]:
+/// fem::cfl::solid_time_step(characteristic_length(x), wave_speed, trD, bulk) per lane, the same
+/// operations in the same order (same bits), with trD the volumetric strain rate of the kernel
+/// (pass zeros when the bulk viscosity is off).
+void critical_time_step(const Lanes (&x)[3][8], const Lanes& trD, double wave_speed, const BulkViscosity& bulk,
+                        Lanes& dt);
 
 /// Convenience overloads on an array of points (tests).
 double exact_volume(const std::array<Vec3, 8>& x);

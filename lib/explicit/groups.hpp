@@ -27,7 +27,7 @@ public:
     Hex8Group(const Mesh& mesh, int block, const ElasticMaterial& material, const Hex8Options& options = {});
     std::string kind() const override { return "hex8"; }
     int size() const override { return static_cast<int>(refs_.size()); }
-    std::vector<int> nodes() const override { return scatter_.nodes; }
+    std::vector<int> nodes() const override { return nodes_; }
     double add_lumped_mass(NodalState& s) const override;
     double mass() const override;
     std::vector<double> reference_time_steps() const override;
@@ -38,25 +38,42 @@ public:
     const ElasticMaterial& material() const { return material_; }
     const hex8::Hex8Reference& reference(int e) const { return refs_[e]; }
     const std::array<int, 8>& connectivity(int e) const { return conn_[e]; }
+    /// Number of colours of the element chunks (barriers per force evaluation on several threads).
+    int colour_count() const { return static_cast<int>(colouring_.colours.size()); }
+
+    /// Elements per chunk: the unit of the deterministic partition (energy partial sums, colouring).
+    static constexpr int kChunk = 1024;
 
 private:
+    // Everything the public interface shows (element indices, connectivity(), reference(),
+    // element_stress(), dt_element, bad_element) is in the block's element order. Each cycle works
+    // in the kernel order instead: the elements sorted by their smallest node (par::node_order), so
+    // that the nodal arrays are walked nearly sequentially and neighbouring elements, which share
+    // nodes, are processed together (nodes loaded from memory about once per cycle).
     ElasticMaterial material_;
     hex8::Hex8Material kernel_material_;
-    std::vector<std::array<int, 8>> conn_;
-    std::vector<hex8::Hex8Reference> refs_;
-    // The kernel's copy of refs_ (what each cycle streams), in blocks of hex8::kLanes elements;
-    // the lanes of the last block past the end repeat the last element (results discarded).
-    std::vector<hex8::Hex8Packed4> packed_;
-    std::vector<double> mass_scale_;   // density factor per element (1 = unscaled)
-    std::vector<double> sqrt_mass_scale_;  // its square root (dt ~ sqrt(rho))
-    double dt_wave_speed_ = 0.0;       // Table 2-1 dilatational wave speed of the material
-    std::vector<double> von_mises_sq_; // squared von Mises stress per element (sqrt taken on output)
-    std::vector<double> dt_;           // critical step per element at the last dt evaluation
-    std::vector<double> ref_dt_;       // critical step per element on the reference geometry
-    // Deterministic assembly: element forces go to fe_ (8 per element); each node then sums its
-    // element slots in a fixed order (CSR node -> slots), whatever the number of threads.
-    std::vector<Vec3> fe_;
-    par::NodeScatter scatter_;  // the group's nodes and their element force slots
+    std::vector<std::array<int, 8>> conn_;    // block order
+    std::vector<hex8::Hex8Reference> refs_;   // block order
+    std::vector<int> nodes_;                  // the group's nodes, increasing
+    std::vector<int> order_;                  // kernel position k -> element index (block order)
+    std::vector<std::array<int, 8>> kconn_;   // connectivity in kernel order
+    // The kernel's copy of refs_ (what each cycle streams), in kernel order, in blocks of
+    // hex8::kLanes elements; the lanes of the last block past the end repeat the last element.
+    std::vector<hex8::Hex8PackedBlock> packed_;
+    std::vector<double> mass_scale_;       // density factor per element (1 = unscaled), block order
+    std::vector<double> sqrt_mass_scale_;  // its square root (dt ~ sqrt(rho)), kernel order
+    double dt_wave_speed_ = 0.0;           // Table 2-1 dilatational wave speed of the material
+    std::vector<double> von_mises_sq_;     // squared von Mises stress, kernel order (sqrt on output)
+    std::vector<double> ref_dt_;           // critical step per element on the reference geometry
+    // Deterministic assembly: chunks of kChunk consecutive (kernel-order) elements, coloured so
+    // that chunks of one colour share no node; each element adds its forces straight into the
+    // nodal forces (see par::ChunkColouring).
+    par::ChunkColouring colouring_;
+    struct Partial {
+        double ie = 0, hg = 0, visc = 0, vm_sq = 0, dt = 0;
+        int dt_k = -1, bad_k = -1;
+    };
+    std::vector<Partial> partial_;  // one per chunk (kept: no allocation per cycle)
 };
 
 /// Beam cross-section and orientation of a beam part (LS-DYNA *SECTION_BEAM).

@@ -26,6 +26,82 @@ int threads();
 /// Sets the number of OpenMP threads (no-op without OpenMP).
 void set_threads(int n);
 
+/// Locality order of elements: the permutation that sorts the elements by their smallest node
+/// index (stable). The per-cycle loops then walk the nodal arrays (which are in node order) nearly
+/// sequentially, which the hardware prefetcher follows, and consecutive elements share nodes that
+/// are still in cache. (Measured on the 100,000-element box: a Morton order of the element
+/// centroids was 1.5x slower than this, its node accesses jumping between the node layers.)
+template <std::size_t N>
+std::vector<int> node_order(const std::vector<std::array<int, N>>& connectivity) {
+    const int n = static_cast<int>(connectivity.size());
+    std::vector<int> order(n), key(n);
+    for (int e = 0; e < n; ++e) {
+        order[e] = e;
+        key[e] = *std::min_element(connectivity[e].begin(), connectivity[e].end());
+    }
+    std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return key[a] < key[b]; });
+    return order;
+}
+
+/// Colouring of the fixed chunks of a group's (ordered) elements for a direct, deterministic
+/// scatter of element forces into the nodal forces: two chunks of one colour share no node. The
+/// chunks of a colour can then run in parallel, each adding its elements' forces straight into
+/// f[node] in element order, with a barrier between colours. Each node thus receives its
+/// contributions in a fixed order - colour, then element, then the element's node order -
+/// whatever the number of threads or the schedule: the same bits on 1 or N threads, without the
+/// per-element force slots (and their memory traffic) of NodeScatter.
+struct ChunkColouring {
+    int chunk = 0;                          // elements per chunk
+    int elements = 0;
+    std::vector<std::vector<int>> colours;  // the chunks of each colour, increasing
+
+    int chunk_count() const { return (elements + chunk - 1) / chunk; }
+    std::pair<int, int> range(int c) const { return {c * chunk, std::min(elements, (c + 1) * chunk)}; }
+
+    /// Greedy colouring of the chunk conflict graph in chunk order; among the colours a chunk may
+    /// take, the one with the fewest chunks so far (balanced colours: each needs enough chunks to
+    /// keep every thread busy).
+    template <std::size_t N>
+    static ChunkColouring build(const std::vector<std::array<int, N>>& connectivity, int node_count, int chunk) {
+        ChunkColouring m;
+        m.chunk = chunk;
+        m.elements = static_cast<int>(connectivity.size());
+        const int nc = m.chunk_count();
+        // Chunks touching each node (appended in increasing chunk order, duplicates skipped).
+        std::vector<std::vector<int>> node_chunks(node_count);
+        for (int c = 0; c < nc; ++c) {
+            const auto [e0, e1] = m.range(c);
+            for (int e = e0; e < e1; ++e)
+                for (int a : connectivity[e]) {
+                    auto& v = node_chunks[a];
+                    if (v.empty() || v.back() != c) v.push_back(c);
+                }
+        }
+        std::vector<int> colour(nc, -1), stamp;
+        std::vector<int> size;
+        for (int c = 0; c < nc; ++c) {
+            stamp.assign(size.size(), 0);  // stamp[k] = 1: colour k taken by a neighbour
+            const auto [e0, e1] = m.range(c);
+            for (int e = e0; e < e1; ++e)
+                for (int a : connectivity[e])
+                    for (int o : node_chunks[a])
+                        if (o != c && colour[o] >= 0) stamp[colour[o]] = 1;
+            int best = -1;
+            for (int k = 0; k < static_cast<int>(size.size()); ++k)
+                if (!stamp[k] && (best < 0 || size[k] < size[best])) best = k;
+            if (best < 0) {
+                best = static_cast<int>(size.size());
+                size.push_back(0);
+                m.colours.emplace_back();
+            }
+            colour[c] = best;
+            ++size[best];
+            m.colours[best].push_back(c);
+        }
+        return m;
+    }
+};
+
 /// Element groups write each element's nodal forces into its own slots (slot e * n + a) and then
 /// sum them per node: this map lists, for every node of the group, its slots in increasing order,
 /// so the per-node sums have the same bits on any number of threads.

@@ -1,9 +1,11 @@
 // The per-cycle hexahedron kernel (element/hex8_explicit.hpp, Hex8Packed path) against independent
 // references: its closed-form exact volume against the 2x2x2 Gauss volume, its V_e / A_emax against
 // fem::cfl::hexahedron_length (thesis Table 2-1), its forces/energies against a plain Eigen
-// transcription of the formulation (gamma vectors, no folding), the group's four-element blocks
-// against the one-element kernel, and the group's per-cycle critical step against
-// fem::cfl::critical_time_step on every element.
+// transcription of the formulation (gamma vectors, no folding), the group's blocks of elements
+// against the one-element kernel, the group's per-cycle critical step against
+// fem::cfl::critical_time_step on every element, and the group's assembly (elements reordered
+// for locality, coloured chunks scattering directly) against a plain element-by-element assembly,
+// with the same bits on 1 and 2 threads.
 //
 // Tolerances (set before running): the quantities are mathematically equal and differ only by the
 // order of the floating-point operations, so the relative differences are a few 1e-16 times the
@@ -15,11 +17,14 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
+#include <algorithm>
 #include <random>
 
 #include "element/critical_time_step.hpp"
 #include "element/hex8_explicit.hpp"
 #include "explicit/groups.hpp"
+#include "explicit/parallel.hpp"
 #include "mesh/mesh.hpp"
 
 using namespace fem;
@@ -144,6 +149,28 @@ TEST(Hex8FastKernel, ForcesAndEnergiesEqualTheDirectFormulation) {
     EXPECT_LT(compressing, 80);
 }
 
+// The kernel's own log1p (vectorizable, for ln J) against std::log1p: within 2 ulp (the method's
+// bound is 1 ulp, libm's another) from tiny strains to J = 0.01 and J = 30.
+TEST(Hex8FastKernel, KernelLog1pMatchesStdLog1p) {
+    auto ulp = [](double y) { return std::nextafter(std::abs(y), INFINITY) - std::abs(y); };
+    std::vector<double> xs;
+    for (int p = 1; p <= 300; ++p)
+        for (double m : {1.0, 3.7, 7.1}) {
+            xs.push_back(m * std::pow(10.0, -p));
+            xs.push_back(-m * std::pow(10.0, -p));
+        }
+    std::mt19937 rng(13);
+    std::uniform_real_distribution<double> wide(-0.99, 29.0), narrow(-0.3, 0.45);
+    for (int i = 0; i < 200000; ++i) xs.push_back(i % 2 ? wide(rng) : narrow(rng));
+    int worst_ulps = 0;
+    for (double x : xs) {
+        const double got = hex8::kernel_log1p(x), want = std::log1p(x);
+        ASSERT_LE(std::abs(got - want), 2.0 * ulp(want)) << "x = " << x;
+        if (want != 0.0) worst_ulps = std::max(worst_ulps, static_cast<int>(std::abs(got - want) / ulp(want)));
+    }
+    std::printf("kernel log1p vs std::log1p: at most %d ulp apart on %zu points\n", worst_ulps, xs.size());
+}
+
 // Hex8Group's per-cycle critical step (kernel V_e / A_emax) against fem::cfl::critical_time_step on
 // each element's current nodes, with bulk viscosity, mass scaling and stiffness damping.
 TEST(Hex8FastKernel, GroupTimeStepEqualsCriticalTimeStep) {
@@ -190,11 +217,11 @@ TEST(Hex8FastKernel, GroupTimeStepEqualsCriticalTimeStep) {
     }
 }
 
-// The group's four-element blocks (hex8::Lanes) against the one-element kernel, element by element,
-// on a mesh whose size is not a multiple of four (the spare lanes of the last block) and with
+// The group's blocks of hex8::kLanes elements against the one-element kernel, element by element,
+// on a mesh whose size is not a multiple of the block (the spare lanes of the last block) and with
 // large deformation, compression and expansion: the same energies, stresses and assembled forces.
 TEST(Hex8FastKernel, GroupBlocksEqualOneElementKernel) {
-    Mesh mesh = box_hex8(0.03, 0.03, 0.01, 3, 3, 1, "blk");  // 9 elements: blocks of 4, 4 and 1
+    Mesh mesh = box_hex8(0.03, 0.03, 0.01, 3, 3, 1, "blk");  // 9 elements: blocks of 8 and 1
     std::mt19937 rng(9);
     std::uniform_real_distribution<double> g(-1.0, 1.0);
     for (auto& x : mesh.nodes) x += 0.001 * Vec3(g(rng), g(rng), g(rng));
@@ -235,4 +262,116 @@ TEST(Hex8FastKernel, GroupBlocksEqualOneElementKernel) {
     EXPECT_NEAR(res.hourglass_energy, hg, 1e-13 * hg);
     EXPECT_NEAR(res.viscous_power, visc, 1e-13 * std::abs(visc));
     for (int i = 0; i < mesh.node_count(); ++i) EXPECT_LT((s.f[i] - f[i]).norm(), 1e-13 * fmax) << i;
+}
+
+// Chunk colouring (par::ChunkColouring): every chunk gets exactly one colour and two chunks of a
+// colour share no node, on a mesh whose elements are in random order (many conflicts).
+TEST(Hex8FastKernel, ChunkColouringSeparatesChunksOfAColour) {
+    const Mesh mesh = box_hex8(1.0, 1.0, 1.0, 12, 10, 9, "blk");
+    const ElementBlock& b = mesh.blocks[0];
+    std::vector<std::array<int, 8>> conn(b.size());
+    for (int e = 0; e < b.size(); ++e)
+        for (int a = 0; a < 8; ++a) conn[e][a] = b.element(e)[a];
+    std::mt19937 rng(4);
+    std::shuffle(conn.begin(), conn.end(), rng);
+    const auto col = par::ChunkColouring::build(conn, mesh.node_count(), 32);
+    std::vector<int> seen(col.chunk_count(), 0);
+    for (const auto& chunks : col.colours) {
+        std::vector<int> owner(mesh.node_count(), -1);
+        for (int c : chunks) {
+            ++seen[c];
+            const auto [e0, e1] = col.range(c);
+            for (int e = e0; e < e1; ++e)
+                for (int a : conn[e]) {
+                    EXPECT_TRUE(owner[a] < 0 || owner[a] == c) << "node " << a << " in chunks " << owner[a] << ", " << c;
+                    owner[a] = c;
+                }
+        }
+    }
+    for (int c = 0; c < col.chunk_count(); ++c) EXPECT_EQ(seen[c], 1) << c;
+}
+
+// The group's own element order (sorted for locality) and coloured direct scatter on a block whose
+// elements are shuffled and large enough (4,480 > par::kParallelMin) for the parallel path: the
+// same bits on 1 and 2 threads; forces, energies, stresses and the controlling element (in the
+// block's order) as a plain element-by-element evaluation with the one-element kernel and
+// fem::cfl::critical_time_step. Tolerances as above (1e-13: the same operations per element, the
+// nodal sums in another order).
+TEST(Hex8FastKernel, GroupOrderingAndThreadsKeepResults) {
+    const Mesh box = box_hex8(0.2, 0.16, 0.14, 20, 16, 14, "blk");
+    Mesh mesh = box;
+    {
+        const ElementBlock& b = box.blocks[0];
+        std::vector<int> perm(b.size());
+        for (int e = 0; e < b.size(); ++e) perm[e] = e;
+        std::mt19937 rng(21);
+        std::shuffle(perm.begin(), perm.end(), rng);
+        mesh.blocks[0].connectivity.clear();
+        for (int e : perm) mesh.blocks[0].add(b.element(e));
+    }
+    std::mt19937 rng(8);
+    std::uniform_real_distribution<double> g(-1.0, 1.0);
+    for (auto& x : mesh.nodes) x += 0.001 * Vec3(g(rng), g(rng), g(rng));
+    Hex8Options opt;
+    opt.rayleigh_beta = 1e-7;
+    Hex8Group group(mesh, 0, kRubber, opt);
+    ASSERT_GT(group.size(), par::kParallelMin);
+    NodalState s;
+    s.X = mesh.nodes;
+    for (const auto& X : mesh.nodes) s.x.push_back(X + 0.05 * Vec3(X.y(), -X.z(), X.x()) + 0.0003 * Vec3(g(rng), g(rng), g(rng)));
+    for (const auto& X : mesh.nodes) s.v.push_back(Vec3(g(rng), g(rng), g(rng)) - 20.0 * (X - Vec3(0.1, 0.08, 0.07)));
+    auto run = [&](int threads) {
+        const int before = par::threads();
+        par::set_threads(threads);
+        s.f.assign(mesh.node_count(), Vec3::Zero());
+        const auto r = group.internal_forces(s, true);
+        par::set_threads(before);
+        return std::make_pair(r, s.f);
+    };
+    const auto [r1, f1] = run(1);
+    const auto vm1 = group.element_stress();
+    const auto [r2, f2] = run(2);
+    EXPECT_TRUE(f1 == f2);
+    EXPECT_TRUE(vm1 == group.element_stress());
+    EXPECT_EQ(r1.internal_energy, r2.internal_energy);
+    EXPECT_EQ(r1.hourglass_energy, r2.hourglass_energy);
+    EXPECT_EQ(r1.viscous_power, r2.viscous_power);
+    EXPECT_EQ(r1.dt_min, r2.dt_min);
+    EXPECT_EQ(r1.dt_element, r2.dt_element);
+    EXPECT_EQ(r1.max_von_mises, r2.max_von_mises);
+
+    const auto mat = hex8::Hex8Material::from(kRubber, opt.hourglass_qm, opt.rayleigh_beta, opt.bulk, opt.bulk_viscosity);
+    std::vector<Vec3> f(mesh.node_count(), Vec3::Zero());
+    double w = 0, hg = 0, fmax = 0, best = std::numeric_limits<double>::infinity();
+    int best_e = -1;
+    for (int e = 0; e < group.size(); ++e) {
+        std::array<Vec3, 8> x, u, v;
+        for (int a = 0; a < 8; ++a) {
+            const int nd = mesh.blocks[0].element(e)[a];
+            ASSERT_EQ(group.connectivity(e)[a], nd);
+            x[a] = s.x[nd];
+            u[a] = s.x[nd] - s.X[nd];
+            v[a] = s.v[nd];
+        }
+        hex8::Hex8Result r;
+        hex8::internal_force(group.reference(e), mat, u, v, 0.0, r);
+        w += r.strain_energy;
+        hg += r.hourglass_energy;
+        EXPECT_NEAR(vm1[e], r.von_mises, 1e-13 * r.von_mises) << e;
+        for (int a = 0; a < 8; ++a) {
+            f[group.connectivity(e)[a]] += r.force[a];
+            fmax = std::max(fmax, r.force[a].norm());
+        }
+        double dt = cfl::critical_time_step(ElementShape::Hex8, x, kRubber, r.volumetric_strain_rate, opt.bulk);
+        dt *= std::sqrt(1.0 + (opt.rayleigh_beta / dt) * (opt.rayleigh_beta / dt)) - opt.rayleigh_beta / dt;
+        if (dt < best) {
+            best = dt;
+            best_e = e;
+        }
+    }
+    EXPECT_NEAR(r1.internal_energy, w, 1e-13 * w);
+    EXPECT_NEAR(r1.hourglass_energy, hg, 1e-13 * hg);
+    for (int i = 0; i < mesh.node_count(); ++i) EXPECT_LT((f1[i] - f[i]).norm(), 1e-13 * fmax) << i;
+    EXPECT_NEAR(r1.dt_min, best, 1e-12 * best);
+    EXPECT_EQ(r1.dt_element, best_e);
 }
