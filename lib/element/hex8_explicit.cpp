@@ -235,7 +235,7 @@ inline Lanes cbrt_jacobian(const Lanes& J) {
 
 template <class T>
 [[gnu::always_inline]] inline void kernel(const Hex8PackedT<T>& p, const Hex8Material& mat, const T (&u)[3][8], const T (&v)[3][8], double length,
-            Hex8KernelResultT<T>& out) {
+            Hex8KernelResultT<T>& out, bool viscous_forces) {
     // Displacement gradient H = F - I from the displacements (not the positions): the strain, the
     // stored energy and the hourglass displacements keep full precision at small strain and far
     // from the origin. Fdot likewise from the velocities.
@@ -344,8 +344,19 @@ template <class T>
         for (int i = 0; i < 3; ++i)
             for (int j = 0; j < 3; ++j) power += sv[i][j] * (0.5 * (L[i][j] + L[j][i]));
         // P += J sv F^-T = sv C.
+        T Pv[3][3];
         for (int i = 0; i < 3; ++i)
-            for (int j = 0; j < 3; ++j) P[i][j] += sv[i][0] * C[0][j] + sv[i][1] * C[1][j] + sv[i][2] * C[2][j];
+            for (int j = 0; j < 3; ++j) {
+                Pv[i][j] = sv[i][0] * C[0][j] + sv[i][1] * C[1][j] + sv[i][2] * C[2][j];
+                P[i][j] += Pv[i][j];
+            }
+        // Its nodal forces alone, for the solver's exact booking of viscous work (NodalState::fv).
+        if (viscous_forces)
+            for (int i = 0; i < 3; ++i)
+                for (int a = 0; a < 8; ++a) out.fv[i][a] = Pv[i][0] * p.B[0][a] + Pv[i][1] * p.B[1][a] + Pv[i][2] * p.B[2][a];
+    } else if (viscous_forces) {
+        for (int i = 0; i < 3; ++i)
+            for (int a = 0; a < 8; ++a) out.fv[i][a] = T{};
     }
     out.viscous_power = J * p.volume * power;
 
@@ -422,8 +433,8 @@ template <class T>
 }  // namespace
 
 void internal_force(const Hex8Packed& p, const Hex8Material& mat, const double (&u)[3][8], const double (&v)[3][8],
-                    double length, Hex8KernelResult& out) {
-    kernel(p, mat, u, v, length, out);
+                    double length, Hex8KernelResult& out, bool viscous_forces) {
+    kernel(p, mat, u, v, length, out, viscous_forces);
 }
 
 // The block functions are compiled three times, for AVX-512, AVX2 and baseline x86-64, and the
@@ -439,8 +450,8 @@ void internal_force(const Hex8Packed& p, const Hex8Material& mat, const double (
 
 FEM_HEX8_CLONES
 void internal_force(const Hex8PackedBlock& p, const Hex8Material& mat, const Lanes (&u)[3][8], const Lanes (&v)[3][8],
-                    Hex8KernelResultBlock& out) {
-    kernel(p, mat, u, v, 0.0, out);
+                    Hex8KernelResultBlock& out, bool viscous_forces) {
+    kernel(p, mat, u, v, 0.0, out, viscous_forces);
 }
 
 double kernel_log1p(double x) { return log1p_lanes(x); }

@@ -141,6 +141,8 @@ struct alignas(sizeof(T)) Hex8KernelResultT {
     T von_mises_sq;            // square of the von Mises stress of the elastic Cauchy stress
     T H[3][3];                 // displacement gradient F - I
     T ln_j;                    // ln det F
+    T fv[3][8];                // the viscous part of f (bulk viscosity + beta damping), filled only
+                               // when asked for (viscous_forces = true); f includes it either way
 };
 using Hex8KernelResult = Hex8KernelResultT<double>;
 using Hex8KernelResultBlock = Hex8KernelResultT<Lanes>;
@@ -150,9 +152,9 @@ static_assert(alignof(Hex8PackedBlock) == kLanesAlign && alignof(Hex8KernelResul
 /// as in internal_force() (<= 0: cube root of the current volume J V0); the block version always
 /// uses the cube root.
 void internal_force(const Hex8Packed& p, const Hex8Material& mat, const double (&u)[3][8], const double (&v)[3][8],
-                    double length, Hex8KernelResult& out);
+                    double length, Hex8KernelResult& out, bool viscous_forces = false);
 void internal_force(const Hex8PackedBlock& p, const Hex8Material& mat, const Lanes (&u)[3][8], const Lanes (&v)[3][8],
-                    Hex8KernelResultBlock& out);
+                    Hex8KernelResultBlock& out, bool viscous_forces = false);
 
 /// ln(1 + x) as the kernel computes ln J = log1p(J - 1) (x > -1): a vectorizable log1p, within
 /// 2 ulp of std::log1p (tests/explicit).

@@ -103,6 +103,9 @@ GroupForceResult Hex8Group::internal_forces(NodalState& s, bool compute_dt) {
     const double* Xs = reinterpret_cast<const double*>(s.X.data());
     const double* vs = reinterpret_cast<const double*>(s.v.data());
     Vec3* fs = s.f.data();
+    // The viscous part of the forces, also into s.fv when the solver books it (exact energy booking).
+    const bool book_viscous = !s.fv.empty() && adds_viscous_forces();
+    Vec3* fvs = book_viscous ? s.fv.data() : nullptr;
 
     // One chunk of kChunk consecutive kernel-order elements, in blocks of kLanes elements, one per
     // lane (the kernel does per lane exactly what it does for one element: the results do not
@@ -138,7 +141,7 @@ GroupForceResult Hex8Group::internal_forces(NodalState& s, bool compute_dt) {
                     }
                 }
             }
-            hex8::internal_force(packed_[kb / W], kmat, u, v, r);
+            hex8::internal_force(packed_[kb / W], kmat, u, v, r, book_viscous);
             // Table 2-1 hexahedron on the current coordinates, with the bulk-viscosity Q term:
             // fem::cfl::critical_time_step's formula with the kernel's cheaper exact V_e / A_emax
             // (equal to fem::cfl::hexahedron_length to round-off, tests/explicit).
@@ -159,6 +162,13 @@ GroupForceResult Hex8Group::internal_forces(NodalState& s, bool compute_dt) {
                     f[1] += r.f[1][a][l];
                     f[2] += r.f[2][a][l];
                 }
+                if (book_viscous)
+                    for (int a = 0; a < 8; ++a) {
+                        Vec3& f = fvs[cn[a]];
+                        f[0] += r.fv[0][a][l];
+                        f[1] += r.fv[1][a][l];
+                        f[2] += r.fv[2][a][l];
+                    }
                 p.ie += r.strain_energy[l];
                 p.hg += r.hourglass_energy[l];
                 p.visc += r.viscous_power[l];

@@ -34,6 +34,11 @@ public:
     void set_mass_scaling(std::vector<double> factor) override;
     GroupForceResult internal_forces(NodalState& s, bool compute_dt) override;
     std::vector<double> element_stress() const override;
+    /// Bulk viscosity and beta damping forces also go to NodalState::fv when the solver allocates it,
+    /// so it books their work exactly (ElementGroup::adds_viscous_forces).
+    bool adds_viscous_forces() const override {
+        return kernel_material_.bulk_viscosity || kernel_material_.rayleigh_beta > 0.0;
+    }
 
     const ElasticMaterial& material() const { return material_; }
     const hex8::Hex8Reference& reference(int e) const { return refs_[e]; }

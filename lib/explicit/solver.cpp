@@ -344,7 +344,7 @@ void ExplicitSolver::initialize() {
     mext_.assign(nr, Vec3::Zero());
     // Viscous nodal forces, only when a group books them (see the update loop in run()).
     book_viscous_ = false;
-    for (const auto& g : groups) book_viscous_ = book_viscous_ || g->adds_viscous_forces();
+    for (const auto& g : groups) book_viscous_ = book_viscous_ || (opt_.exact_viscous_energy && g->adds_viscous_forces());
     if (book_viscous_) s_.fv.assign(n, Vec3::Zero());
     if (!model_.force_providers().empty()) {
         fprov_.assign(n, Vec3::Zero());
