@@ -227,6 +227,8 @@ struct ImpulseRun {
     double force = 0.0;      // total tip force during the pulse [N]
     double end_time = 0.0;   // [s]
     double interval = 0.0;   // history interval [s]
+    std::filesystem::path pvd;  // deformed states (displacement, von Mises) for ParaView, when set
+    double vtu_interval = 0.0;
 };
 
 /// The impulse of every run: a pulse as long as the second bending period (beam theory), so that it
@@ -292,6 +294,8 @@ ImpulseResult run_impulse(const ImpulseRun& r, double alpha) {
     o.name = fmt::format("{} alpha={:.4g}", r.name, alpha);
     o.print_summary = false;
     o.progress = false;
+    o.pvd_path = r.pvd;
+    o.vtu_interval = r.vtu_interval;
     ExplicitSolver solver(model, o);
     ImpulseResult out;
     out.setup_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -590,6 +594,10 @@ int main(int argc, char** argv) {
         for (int i = 0; i < 4; ++i) {
             ImpulseRun r = impulse_run("table-3-2 case " + ids[i], case_mesh[i], L45, case_end[i]);
             r.interval = case_interval;
+            if (i == 3) {  // Fig 3-7: displacement and stress contours of the detailed model (VTU)
+                r.pvd = out / "fig-3-7-case-D.pvd";
+                r.vtu_interval = std::min(case_end[i] / 4, 5e-3);
+            }
             case_runs.push_back(run_impulse(r, alpha_case));
             case_setup_s[i] = case_runs.back().setup_s;
             nlohmann::json j = case_runs.back().summary.to_json();

@@ -171,6 +171,48 @@ TEST(Hex8FastKernel, KernelLog1pMatchesStdLog1p) {
     std::printf("kernel log1p vs std::log1p: at most %d ulp apart on %zu points\n", worst_ulps, xs.size());
 }
 
+namespace {
+// A Hex8Group's forces recomputed element by element with the one-element kernel (the reference the
+// blocked, coloured group must equal): assembled forces, energies, viscous power, and per element
+// the von Mises stress and the Table 2-1 step (with the beta reduction) on the current nodes.
+struct ElementByElement {
+    std::vector<Vec3> f;
+    double strain_energy = 0, hourglass_energy = 0, viscous_power = 0, fmax = 0;
+    std::vector<double> von_mises, dt;
+};
+// mass_scale: the per-element density factors given to the group (selective mass scaling), if any.
+ElementByElement element_by_element(const Hex8Group& group, const NodalState& s, const Hex8Options& opt,
+                                    const std::vector<double>& mass_scale = {}) {
+    const auto mat = hex8::Hex8Material::from(kRubber, opt.hourglass_qm, opt.rayleigh_beta, opt.bulk, opt.bulk_viscosity);
+    ElementByElement out;
+    out.f.assign(s.x.size(), Vec3::Zero());
+    for (int e = 0; e < group.size(); ++e) {
+        std::array<Vec3, 8> x, u, v;
+        for (int a = 0; a < 8; ++a) {
+            const int nd = group.connectivity(e)[a];
+            x[a] = s.x[nd];
+            u[a] = s.x[nd] - s.X[nd];
+            v[a] = s.v[nd];
+        }
+        hex8::Hex8Result r;
+        hex8::internal_force(group.reference(e), mat, u, v, 0.0, r);
+        out.strain_energy += r.strain_energy;
+        out.hourglass_energy += r.hourglass_energy;
+        out.viscous_power += r.viscous_power;
+        out.von_mises.push_back(r.von_mises);
+        for (int a = 0; a < 8; ++a) {
+            out.f[group.connectivity(e)[a]] += r.force[a];
+            out.fmax = std::max(out.fmax, r.force[a].norm());
+        }
+        double dt = cfl::critical_time_step(ElementShape::Hex8, x, kRubber, r.volumetric_strain_rate, opt.bulk);
+        if (!mass_scale.empty()) dt *= std::sqrt(mass_scale[e]);  // dt ~ sqrt(rho)
+        dt *= std::sqrt(1.0 + (opt.rayleigh_beta / dt) * (opt.rayleigh_beta / dt)) - opt.rayleigh_beta / dt;
+        out.dt.push_back(dt);
+    }
+    return out;
+}
+}  // namespace
+
 // Hex8Group's per-cycle critical step (kernel V_e / A_emax) against fem::cfl::critical_time_step on
 // each element's current nodes, with bulk viscosity, mass scaling and stiffness damping.
 TEST(Hex8FastKernel, GroupTimeStepEqualsCriticalTimeStep) {
@@ -191,29 +233,10 @@ TEST(Hex8FastKernel, GroupTimeStepEqualsCriticalTimeStep) {
         for (const auto& X : mesh.nodes) s.v.push_back(Vec3(g(rng), g(rng), g(rng)) - 100.0 * (X - Vec3(0.015, 0.01, 0.01)));
         s.f.assign(mesh.node_count(), Vec3::Zero());
         const auto res = group.internal_forces(s, true);
-        const auto mat = hex8::Hex8Material::from(kRubber, opt.hourglass_qm, beta, opt.bulk, opt.bulk_viscosity);
-        double best = std::numeric_limits<double>::infinity();
-        int best_e = -1;
-        for (int e = 0; e < group.size(); ++e) {
-            std::array<Vec3, 8> x, u, v;
-            for (int a = 0; a < 8; ++a) {
-                const int nd = group.connectivity(e)[a];
-                x[a] = s.x[nd];
-                u[a] = s.x[nd] - s.X[nd];
-                v[a] = s.v[nd];
-            }
-            hex8::Hex8Result r;
-            hex8::internal_force(group.reference(e), mat, u, v, 0.0, r);
-            double dt = cfl::critical_time_step(ElementShape::Hex8, x, kRubber, r.volumetric_strain_rate, opt.bulk) *
-                        std::sqrt(scale[e]);
-            if (beta > 0.0) dt *= std::sqrt(1.0 + (beta / dt) * (beta / dt)) - beta / dt;
-            if (dt < best) {
-                best = dt;
-                best_e = e;
-            }
-        }
-        EXPECT_NEAR(res.dt_min, best, 1e-12 * best) << beta;
-        EXPECT_EQ(res.dt_element, best_e) << beta;
+        const auto ref = element_by_element(group, s, opt, scale);
+        const auto best = std::min_element(ref.dt.begin(), ref.dt.end());
+        EXPECT_NEAR(res.dt_min, *best, 1e-12 * *best) << beta;
+        EXPECT_EQ(res.dt_element, best - ref.dt.begin()) << beta;
     }
 }
 
@@ -236,32 +259,13 @@ TEST(Hex8FastKernel, GroupBlocksEqualOneElementKernel) {
     for (const auto& X : mesh.nodes) s.v.push_back(Vec3(g(rng), g(rng), g(rng)) + 50.0 * g(rng) * X);
     s.f.assign(mesh.node_count(), Vec3::Zero());
     const auto res = group.internal_forces(s, false);
-    const auto mat = hex8::Hex8Material::from(kRubber, opt.hourglass_qm, opt.rayleigh_beta, opt.bulk, opt.bulk_viscosity);
-    std::vector<Vec3> f(mesh.node_count(), Vec3::Zero());
-    double w = 0, hg = 0, visc = 0, fmax = 0;
+    const ElementByElement ref = element_by_element(group, s, opt);
     const auto vm = group.element_stress();
-    for (int e = 0; e < group.size(); ++e) {
-        std::array<Vec3, 8> u, v;
-        for (int a = 0; a < 8; ++a) {
-            const int nd = group.connectivity(e)[a];
-            u[a] = s.x[nd] - s.X[nd];
-            v[a] = s.v[nd];
-        }
-        hex8::Hex8Result r;
-        hex8::internal_force(group.reference(e), mat, u, v, 0.0, r);
-        w += r.strain_energy;
-        hg += r.hourglass_energy;
-        visc += r.viscous_power;
-        EXPECT_NEAR(vm[e], r.von_mises, 1e-13 * r.von_mises) << e;
-        for (int a = 0; a < 8; ++a) {
-            f[group.connectivity(e)[a]] += r.force[a];
-            fmax = std::max(fmax, r.force[a].norm());
-        }
-    }
-    EXPECT_NEAR(res.internal_energy, w, 1e-13 * w);
-    EXPECT_NEAR(res.hourglass_energy, hg, 1e-13 * hg);
-    EXPECT_NEAR(res.viscous_power, visc, 1e-13 * std::abs(visc));
-    for (int i = 0; i < mesh.node_count(); ++i) EXPECT_LT((s.f[i] - f[i]).norm(), 1e-13 * fmax) << i;
+    for (int e = 0; e < group.size(); ++e) EXPECT_NEAR(vm[e], ref.von_mises[e], 1e-13 * ref.von_mises[e]) << e;
+    EXPECT_NEAR(res.internal_energy, ref.strain_energy, 1e-13 * ref.strain_energy);
+    EXPECT_NEAR(res.hourglass_energy, ref.hourglass_energy, 1e-13 * ref.hourglass_energy);
+    EXPECT_NEAR(res.viscous_power, ref.viscous_power, 1e-13 * std::abs(ref.viscous_power));
+    for (int i = 0; i < mesh.node_count(); ++i) EXPECT_LT((s.f[i] - ref.f[i]).norm(), 1e-13 * ref.fmax) << i;
 }
 
 // Chunk colouring (par::ChunkColouring): every chunk gets exactly one colour and two chunks of a
@@ -340,38 +344,15 @@ TEST(Hex8FastKernel, GroupOrderingAndThreadsKeepResults) {
     EXPECT_EQ(r1.dt_element, r2.dt_element);
     EXPECT_EQ(r1.max_von_mises, r2.max_von_mises);
 
-    const auto mat = hex8::Hex8Material::from(kRubber, opt.hourglass_qm, opt.rayleigh_beta, opt.bulk, opt.bulk_viscosity);
-    std::vector<Vec3> f(mesh.node_count(), Vec3::Zero());
-    double w = 0, hg = 0, fmax = 0, best = std::numeric_limits<double>::infinity();
-    int best_e = -1;
-    for (int e = 0; e < group.size(); ++e) {
-        std::array<Vec3, 8> x, u, v;
-        for (int a = 0; a < 8; ++a) {
-            const int nd = mesh.blocks[0].element(e)[a];
-            ASSERT_EQ(group.connectivity(e)[a], nd);
-            x[a] = s.x[nd];
-            u[a] = s.x[nd] - s.X[nd];
-            v[a] = s.v[nd];
-        }
-        hex8::Hex8Result r;
-        hex8::internal_force(group.reference(e), mat, u, v, 0.0, r);
-        w += r.strain_energy;
-        hg += r.hourglass_energy;
-        EXPECT_NEAR(vm1[e], r.von_mises, 1e-13 * r.von_mises) << e;
-        for (int a = 0; a < 8; ++a) {
-            f[group.connectivity(e)[a]] += r.force[a];
-            fmax = std::max(fmax, r.force[a].norm());
-        }
-        double dt = cfl::critical_time_step(ElementShape::Hex8, x, kRubber, r.volumetric_strain_rate, opt.bulk);
-        dt *= std::sqrt(1.0 + (opt.rayleigh_beta / dt) * (opt.rayleigh_beta / dt)) - opt.rayleigh_beta / dt;
-        if (dt < best) {
-            best = dt;
-            best_e = e;
-        }
-    }
-    EXPECT_NEAR(r1.internal_energy, w, 1e-13 * w);
-    EXPECT_NEAR(r1.hourglass_energy, hg, 1e-13 * hg);
-    for (int i = 0; i < mesh.node_count(); ++i) EXPECT_LT((f1[i] - f[i]).norm(), 1e-13 * fmax) << i;
-    EXPECT_NEAR(r1.dt_min, best, 1e-12 * best);
-    EXPECT_EQ(r1.dt_element, best_e);
+    // Element by element, in the block's order (the group reorders internally and maps back).
+    for (int e = 0; e < group.size(); ++e)
+        for (int a = 0; a < 8; ++a) ASSERT_EQ(group.connectivity(e)[a], mesh.blocks[0].element(e)[a]);
+    const ElementByElement ref = element_by_element(group, s, opt);
+    for (int e = 0; e < group.size(); ++e) EXPECT_NEAR(vm1[e], ref.von_mises[e], 1e-13 * ref.von_mises[e]) << e;
+    const auto best = std::min_element(ref.dt.begin(), ref.dt.end());
+    EXPECT_NEAR(r1.internal_energy, ref.strain_energy, 1e-13 * ref.strain_energy);
+    EXPECT_NEAR(r1.hourglass_energy, ref.hourglass_energy, 1e-13 * ref.hourglass_energy);
+    for (int i = 0; i < mesh.node_count(); ++i) EXPECT_LT((f1[i] - ref.f[i]).norm(), 1e-13 * ref.fmax) << i;
+    EXPECT_NEAR(r1.dt_min, *best, 1e-12 * *best);
+    EXPECT_EQ(r1.dt_element, best - ref.dt.begin());
 }
