@@ -34,22 +34,14 @@
 #include <cstdlib>
 #include <numbers>
 
+#include "../explicit/explicit_test_support.hpp"
 #include "ball_mesh.hpp"
 #include "contact/contact.hpp"
 #include "contact/explicit_contact.hpp"
 
 using namespace fem;
+using fem::test::quiet;
 using namespace fem::contact;
-
-namespace {
-ExplicitOptions quiet(double end_time) {
-    ExplicitOptions o;
-    o.end_time = end_time;
-    o.print_summary = false;
-    o.progress = false;
-    return o;
-}
-}  // namespace
 
 TEST(ContactExplicit, BouncingBallContactTimeAndPeakForceFollowHertz) {
     const double R = 0.05, v0 = 2.0;

@@ -22,6 +22,7 @@
 #include <random>
 
 #include "explicit/parallel.hpp"
+#include "explicit_test_support.hpp"
 #include "explicit/solver.hpp"
 
 using namespace fem;
@@ -130,13 +131,8 @@ void BM_WireSteps(benchmark::State& state) {
     double cycles_per_s = 0, us_per_step = 0;
     for (auto _ : state) {
         Mesh mesh = line_beam2(Vec3::Zero(), Vec3(0.4, 0, 0), 100, "beam");
-        const auto steel = ElasticMaterial::make("steel", 209e9, 0.3, 7957);
         ExplicitModel model(mesh);
-        model.add_beams("beam", steel, {beam::Section::circular(0.6e-3)});
-        const int tip = mesh.node_set("end")[0];
-        model.add_point_mass("tip mass", tip, 0.015e-3);
-        model.fix(mesh.node_set("start"), Dofs::all());
-        model.add_nodal_force({tip}, Vec3(0, -0.003, 0), Curve::pulse(0.0, 0.2));
+        const int tip = test::add_table_2_8_wire(model, mesh);
         ExplicitOptions o;
         o.print_summary = false;
         o.progress = false;

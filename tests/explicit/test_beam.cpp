@@ -6,11 +6,13 @@
 #include <cmath>
 #include <numbers>
 
+#include "explicit_test_support.hpp"
 #include "core/error.hpp"
 #include "element/beam_corotational.hpp"
 #include "explicit/solver.hpp"
 
 using namespace fem;
+using fem::test::quiet;
 
 namespace {
 constexpr double kPi = std::numbers::pi;
@@ -18,13 +20,6 @@ const ElasticMaterial kWire = ElasticMaterial::make("steel wire", 209e9, 0.3, 79
 
 Mat3 rot(double angle, Vec3 axis) { return Eigen::AngleAxisd(angle, axis.normalized()).toRotationMatrix(); }
 
-ExplicitOptions quiet(double end_time) {
-    ExplicitOptions o;
-    o.end_time = end_time;
-    o.print_summary = false;
-    o.progress = false;
-    return o;
-}
 
 std::vector<double> upward_crossings(const std::vector<double>& t, const std::vector<double>& y) {
     std::vector<double> c;
@@ -181,16 +176,9 @@ TEST(BeamRotation, FreeSpinCreatesNoStrainEnergy) {
     for (int i = 0; i < mesh.node_count(); ++i) all[i] = i;
     model.set_initial_angular_velocity(all, omega);
     const double t_end = 2 * 2 * kPi / omega.norm() * 0.25;  // half a revolution (keeps the test short)
-    ExplicitSolver solver(model, quiet(t_end));
-    double max_ratio = 0;
-    solver.observer = [&](const ExplicitSolver& s) {
-        const auto& h = s.history();
-        max_ratio = std::max(max_ratio, h.internal.back() / h.kinetic.back());
-    };
-    const auto sum = solver.run();
-    const Mat3 R = Eigen::AngleAxisd(omega.norm() * solver.time(), omega.normalized()).toRotationMatrix();
-    double err = 0;
-    for (int i = 0; i < mesh.node_count(); ++i) err = std::max(err, (solver.state().x[i] - R * mesh.nodes[i]).norm());
+    const auto spin = test::run_rigid_spin(model, mesh, omega, t_end);
+    const double max_ratio = spin.max_internal_over_kinetic, err = spin.position_error;
+    const auto& sum = spin.summary;
     std::printf("beam spin: max IE/KE %.3e, position error %.3e m, energy error %.2e\n", max_ratio, err,
                 sum.energy.relative_error());
     EXPECT_LT(max_ratio, 1e-5);

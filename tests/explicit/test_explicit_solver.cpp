@@ -8,24 +8,19 @@
 #include <numbers>
 #include <random>
 
+#include "explicit_test_support.hpp"
 #include "core/error.hpp"
 #include "element/critical_time_step.hpp"
 #include "explicit/parallel.hpp"
 #include "explicit/solver.hpp"
 
 using namespace fem;
+using fem::test::quiet;
 
 namespace {
 constexpr double kPi = std::numbers::pi;
 const ElasticMaterial kSteel = ElasticMaterial::make("steel", 210e9, 0.3, 7800);
 
-ExplicitOptions quiet(double end_time) {
-    ExplicitOptions o;
-    o.end_time = end_time;
-    o.print_summary = false;
-    o.progress = false;
-    return o;
-}
 
 // Cantilever first mode shape (clamped at 0, free at 1), Euler-Bernoulli.
 double mode1(double xi) {
@@ -203,18 +198,9 @@ TEST(ExplicitRotation, RigidSpinCreatesNoStrainEnergy) {
     const Vec3 w = 100.0 * Vec3(1, 1, 2).normalized();
     model.set_initial_velocity([&](const Vec3& X) { return Vec3(w.cross(X)); });
     const double t_end = kPi / w.norm();
-    ExplicitOptions o = quiet(t_end);
-    ExplicitSolver solver(model, o);
-    double max_ratio = 0;
-    solver.observer = [&](const ExplicitSolver& s) {
-        const auto& h = s.history();
-        max_ratio = std::max(max_ratio, h.internal.back() / h.kinetic.back());
-    };
-    const RunSummary sum = solver.run();
-    const Mat3 R = Eigen::AngleAxisd(w.norm() * solver.time(), w.normalized()).toRotationMatrix();
-    double err = 0;
-    for (int i = 0; i < mesh.node_count(); ++i)
-        err = std::max(err, (solver.state().x[i] - R * mesh.nodes[i]).norm());
+    const auto spin = test::run_rigid_spin(model, mesh, w, t_end);
+    const double max_ratio = spin.max_internal_over_kinetic, err = spin.position_error;
+    const auto& sum = spin.summary;
     std::printf("rigid spin: max IE/KE %.3e, position error %.3e m, energy error %.2e\n", max_ratio, err,
                 sum.energy.relative_error());
     EXPECT_LT(max_ratio, 1e-5);
@@ -384,13 +370,8 @@ TEST(ExplicitStability, RubberBlockNeedsTheMeasuredStabilityFactor) {
 // 2 ms only: it builds, the step is the Table 2-1 beam step L/c x 0.9, the summary is filled.
 TEST(ExplicitExample, CompliantWireOfTable2_8) {
     Mesh mesh = line_beam2(Vec3(0, 0, 0), Vec3(0.4, 0, 0), 100, "beam");
-    const auto steel = ElasticMaterial::make("steel", 209e9, 0.3, 7957);
     ExplicitModel model(mesh);
-    model.add_beams("beam", steel, {beam::Section::circular(0.6e-3)});
-    const int tip = mesh.node_set("end")[0];
-    model.add_point_mass("tip mass", tip, 0.015e-3);
-    model.fix(mesh.node_set("start"), Dofs::all());
-    model.add_nodal_force({tip}, Vec3(0, -0.003, 0), Curve::pulse(0.0, 0.2));
+    const int tip = test::add_table_2_8_wire(model, mesh);
     model.set_mass_damping("beam", 0.165);
     model.set_mass_damping("tip mass", 0.165);
     ExplicitOptions opt = quiet(2e-3);
