@@ -40,6 +40,18 @@ inline RigidSpin run_rigid_spin(ExplicitModel& model, const Mesh& mesh, const Ve
     return r;
 }
 
+/// A nodal state of `mesh` at rest in its reference configuration: no mass yet, no rotational DOFs.
+inline NodalState state_at_rest(const Mesh& mesh) {
+    NodalState s;
+    s.X = mesh.nodes;
+    s.x = mesh.nodes;
+    s.v.assign(mesh.node_count(), Vec3::Zero());
+    s.f.assign(mesh.node_count(), Vec3::Zero());
+    s.mass.assign(mesh.node_count(), 0.0);
+    s.rot_index.assign(mesh.node_count(), -1);
+    return s;
+}
+
 /// The compliant wire of thesis Table 2-8 (the usage example of explicit/solver.hpp): a 0.4 m steel
 /// wire of 0.6 mm radius as `mesh`'s beams (line_beam2 with node sets "start", "end"), a 0.015 g tip
 /// mass, clamped at the start, a 0.003 N tip pulse for 0.2 s. Returns the tip node.

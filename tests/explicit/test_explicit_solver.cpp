@@ -212,12 +212,7 @@ namespace {
 // amplitude (linear regime), fixed nodes excluded.
 double omega_max(const Mesh& mesh, const ElasticMaterial& mat, const Hex8Options& opt) {
     Hex8Group g(mesh, 0, mat, opt);
-    NodalState s;
-    s.X = mesh.nodes;
-    s.x = mesh.nodes;
-    s.v.assign(mesh.node_count(), Vec3::Zero());
-    s.f.assign(mesh.node_count(), Vec3::Zero());
-    s.mass.assign(mesh.node_count(), 0.0);
+    NodalState s = test::state_at_rest(mesh);
     g.add_lumped_mass(s);
     std::mt19937 rng(1);
     std::normal_distribution<double> nd;

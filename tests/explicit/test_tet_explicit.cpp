@@ -15,6 +15,7 @@
 #include <Spectra/MatOp/SparseSymMatProd.h>
 #include <Spectra/SymEigsSolver.h>
 
+#include "explicit_test_support.hpp"
 #include "core/error.hpp"
 #include "element/solid_elements.hpp"
 #include "explicit/solver.hpp"
@@ -68,16 +69,6 @@ Mesh box_tets(double lx, double ly, double lz, int nx, int ny, int nz, bool quad
     return m;
 }
 
-NodalState state_of(const Mesh& mesh) {
-    NodalState s;
-    s.X = mesh.nodes;
-    s.x = mesh.nodes;
-    s.v.assign(mesh.node_count(), Vec3::Zero());
-    s.f.assign(mesh.node_count(), Vec3::Zero());
-    s.mass.assign(mesh.node_count(), 0.0);
-    s.rot_index.assign(mesh.node_count(), -1);
-    return s;
-}
 
 // Deterministic pseudo-random number in [-1, 1] from a position and a seed.
 double hash(const Vec3& x, double seed) {
@@ -161,7 +152,7 @@ void patch_test(bool quadratic, bool curved) {
         for (int i = 27; i < mesh.node_count(); ++i)  // the mid-edge nodes follow the 27 corner nodes
             if (!on_unit_box_boundary(mesh.nodes[i])) mesh.nodes[i] = move(mesh.nodes[i]);
     Group g(mesh, 0, kRubber, TetGroupOptions{.bulk_viscosity = false});
-    NodalState s = state_of(mesh);
+    NodalState s = test::state_at_rest(mesh);
     Mat3 A;
     A << 0.10, 0.03, -0.05, 0.02, -0.08, 0.04, 0.06, 0.01, 0.05;  // finite strain
     const Mat3 F = Mat3::Identity() + A;
@@ -191,7 +182,7 @@ template <class Group>
 void rigid_rotation(bool quadratic) {
     Mesh mesh = box_tets(1.0, 0.5, 0.3, 2, 2, 1, quadratic);
     Group g(mesh, 0, kRubber);
-    NodalState s = state_of(mesh);
+    NodalState s = test::state_at_rest(mesh);
     const Mat3 R = Eigen::AngleAxisd(1.3, Vec3(1, 2, 3).normalized()).toRotationMatrix();
     for (int i = 0; i < mesh.node_count(); ++i) s.x[i] = R * s.X[i] + Vec3(0.4, -0.2, 0.7);
     const GroupForceResult r = g.internal_forces(s, false);
@@ -395,7 +386,7 @@ TEST(TetExplicit, MixedHexTetModelGetsTheAssembledStabilityFactor) {
     // Reference: dense K over the free DOFs, generalized eigenproblem with the lumped masses.
     ExplicitModel ref_model(mesh);
     build(ref_model);
-    NodalState s = state_of(mesh);
+    NodalState s = test::state_at_rest(mesh);
     for (auto& g : ref_model.groups()) g->add_lumped_mass(s);
     std::vector<char> fixed(mesh.node_count(), 0);
     for (int n : root) fixed[n] = 1;
@@ -469,7 +460,7 @@ TEST(TetExplicit, StepFollowsDeformationAndStiffnessDamping) {
     const Mesh mesh = box_tets(0.02, 0.02, 0.01, 2, 2, 1, true);
     Tet10Group g(mesh, 0, kRubber, {.bulk_viscosity = false});
     const double r = 0.4;  // a stability factor as the solver's measurement would set it
-    NodalState s = state_of(mesh);
+    NodalState s = test::state_at_rest(mesh);
     const double dt_table = g.internal_forces(s, true).dt_min;
     EXPECT_TRUE(g.set_stability_factor(r));
     const double dt0 = g.internal_forces(s, true).dt_min;
@@ -481,7 +472,7 @@ TEST(TetExplicit, StepFollowsDeformationAndStiffnessDamping) {
     const double beta = 0.2 * dt0;
     Tet10Group gb(mesh, 0, kRubber, {.bulk_viscosity = false, .rayleigh_beta = beta});
     gb.set_stability_factor(r);  // applied before the damping reduction: xi from the scaled step
-    NodalState sb = state_of(mesh);
+    NodalState sb = test::state_at_rest(mesh);
     const double xi = beta / dt0;
     EXPECT_NEAR(gb.internal_forces(sb, true).dt_min, dt0 * (std::sqrt(1 + xi * xi) - xi), 1e-12 * dt0);
 }
