@@ -188,14 +188,10 @@ Result run_case(const Case& c, double finger_h, const std::filesystem::path& out
             bins_fx.push_back(Fm.x()), bins_fy.push_back(Fm.y()), bins_sf.push_back(bin_sf), bins_so.push_back(bin_so);
             bin_start = s.time(), bin_impulse.setZero(), bin_sf = 0, bin_so = 0;
         }
-        // Contact force (resultant on the finger) and location: force- and time-weighted centroid of
+        // Contact force (the interface's resultant) and location: force- and time-weighted centroid of
         // the contact points on the object.
-        Vec3 fc = Vec3::Zero();
-        for (const auto& p : ci->contacts()) {
-            fc += p.normal_force * p.normal + p.tangential_force;
-            cp_acc += p.normal_force * dt * p.point, cw += p.normal_force * dt;
-        }
-        fc_row += fc.norm() * dt;
+        for (const auto& p : ci->contacts()) cp_acc += p.normal_force * dt * p.point, cw += p.normal_force * dt;
+        fc_row += ci->force_on_master().norm() * dt;
         if (!ci->contacts().empty()) t_contact_seen = s.time();
         if (s.time() >= row_start + row - 1e-12) {
             const double len = s.time() - row_start;
