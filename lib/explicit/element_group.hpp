@@ -78,6 +78,9 @@ public:
     virtual GroupForceResult internal_forces(NodalState& s, bool compute_dt) = 0;
     /// Per-element von Mises stress (beams: outer-fibre stress) at the last force evaluation.
     virtual std::vector<double> element_stress() const = 0;
+    /// Which rule gives element e's critical step (the summary names it for the controlling element):
+    /// "Table 2-1" unless the group has several (beams: axial L/c or the transverse bending bound).
+    virtual std::string time_step_rule(int element) const { return "Table 2-1"; }
 
     /// True when the group has viscous forces (bulk viscosity, stiffness damping) and, whenever
     /// s.fv is non-empty, internal_forces also adds their nodal values to s.fv (they stay in s.f).

@@ -100,6 +100,30 @@ struct ChunkColouring {
         }
         return m;
     }
+
+    /// Runs body(chunk) for every chunk, colour by colour (a barrier between colours), on the
+    /// OpenMP threads when `parallel`. Inside a colour the chunks are scheduled dynamically: a
+    /// chunk's results do not depend on which thread computes it, so the bits are the same on any
+    /// number of threads, and a thread that a shared machine preempts does not hold the others up
+    /// within a colour.
+    template <class Body>
+    void for_each_chunk(bool parallel, const Body& body) const {
+#pragma omp parallel if (parallel)
+        {
+            const int n_colours = static_cast<int>(colours.size());
+            for (int k = 0; k < n_colours; ++k) {
+                const auto& list = colours[k];
+                const int m = static_cast<int>(list.size());
+                if (k + 1 < n_colours) {
+#pragma omp for schedule(dynamic, 1)
+                    for (int i = 0; i < m; ++i) body(list[i]);
+                } else {  // the end of the parallel region is the last barrier
+#pragma omp for schedule(dynamic, 1) nowait
+                    for (int i = 0; i < m; ++i) body(list[i]);
+                }
+            }
+        }
+    }
 };
 
 /// Element groups write each element's nodal forces into its own slots (slot e * n + a) and then

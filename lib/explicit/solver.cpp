@@ -162,8 +162,9 @@ std::string RunSummary::text() const {
                      threads);
     s += fmt::format("  mass {:.6g} kg, added by mass scaling {:.4g} kg ({:.3g} %)\n", mass, added_mass,
                      100.0 * added_mass_fraction);
-    s += fmt::format("  controlling element: part '{}' block {} {} element {}, critical dt {:.4g} s (Table 2-1)\n",
-                     controlling_part, controlling_block, controlling_kind, controlling_element, controlling_dt);
+    s += fmt::format("  controlling element: part '{}' block {} {} element {}, critical dt {:.4g} s ({})\n",
+                     controlling_part, controlling_block, controlling_kind, controlling_element, controlling_dt,
+                     controlling_rule);
     if (stability_factor < 1.0)
         s += fmt::format("  measured stability limit of the solid elements: 2/omega_max = {:.4f} x Table 2-1 (steps scaled)\n",
                          stability_factor);
@@ -194,6 +195,7 @@ nlohmann::json RunSummary::to_json() const {
              fmt::format("part '{}' block {} {} element {}", controlling_part, controlling_block, controlling_kind,
                          controlling_element)},
             {"controlling_dt_s", controlling_dt},
+            {"controlling_rule", controlling_rule},
             {"stability_factor", stability_factor},
             {"mass_kg", mass},
             {"added_mass_kg", added_mass},
@@ -840,16 +842,7 @@ RunSummary ExplicitSolver::run() {
             tot.ke_plus += 0.5 * J * wp.squaredNorm();
             if (!std::isfinite(wp.squaredNorm()) && tot.bad < 0) tot.bad = node;
             s_.omega[k] = wp;
-            // Rodrigues: exp([phi]x) = I + sin(a) K + (1 - cos a) K^2, K the unit skew matrix of phi.
-            const Vec3 phi = dt_half * wp;
-            const double angle = phi.norm();
-            if (angle > 0.0) {
-                const Vec3 e = phi / angle;
-                Mat3 K;
-                K << 0, -e.z(), e.y(), e.z(), 0, -e.x(), -e.y(), e.x(), 0;
-                const Mat3 dR = Mat3::Identity() + std::sin(angle) * K + (1.0 - std::cos(angle)) * (K * K);
-                s_.rotation[k] = dR * s_.rotation[k];
-            }
+            beam::rotate(dt_half * wp, s_.rotation[k]);  // exp([w dt]x) R (Rodrigues)
         }
         // Energy balance at time n (kinetic from v(n-1/2).v(n+1/2), strain energy at x(n)).
         E.kinetic = tot.ke;
@@ -922,6 +915,7 @@ RunSummary ExplicitSolver::run() {
         summary_.controlling_kind = g.kind();
         summary_.controlling_block = g.block;
         summary_.controlling_element = ctrl_element;
+        summary_.controlling_rule = g.time_step_rule(ctrl_element);
     }
     if (!opt_.h5_path.empty()) {
         io::H5Writer w(opt_.h5_path);

@@ -241,6 +241,7 @@ struct RunSummary {
     long steps = 0;
     double end_time = 0, first_dt = 0, min_dt = 0, max_dt = 0;
     std::string controlling_part, controlling_kind;
+    std::string controlling_rule;  // which rule gives its step (ElementGroup::time_step_rule)
     int controlling_block = -1, controlling_element = -1;
     double controlling_dt = 0;   // its critical step (before the 0.9 and the stability factor)
     double stability_factor = 1; // measured 2/omega_max over the Table 2-1 step (<= 1; solid groups)

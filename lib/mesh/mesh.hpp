@@ -70,6 +70,13 @@ void validate(const Mesh& mesh);
 /// "y0", "y1", "z0", "z1" (the six faces).
 Mesh box_hex8(double lx, double ly, double lz, int nx, int ny, int nz, std::string part = "box");
 
+/// The box of box_hex8 with every hexahedron split into six tetrahedra around its main diagonal
+/// (a conforming split of the structured grid), `shape` Tet4 or Tet10 (mid-edge nodes shared between
+/// neighbours, Gmsh order: corners, then edges 01, 12, 02, 03, 23, 13). Node sets as box_hex8 ("x0",
+/// "x1", ..., mid-edge nodes on those faces included).
+Mesh box_tets(double lx, double ly, double lz, int nx, int ny, int nz, ElementShape shape = ElementShape::Tet10,
+              std::string part = "box");
+
 /// nx x ny quadrilaterals (Quad4 or Quad8) filling [0,lx] x [0,ly] in the z = 0 plane. Node sets
 /// "x0", "x1", "y0", "y1" (the four edges).
 Mesh rectangle_quads(double lx, double ly, int nx, int ny, ElementShape shape = ElementShape::Quad4,
