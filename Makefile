@@ -22,7 +22,8 @@ DEB_PACKAGES := cmake make g++ pkg-config \
   nlohmann-json3-dev libtomlplusplus-dev libfmt-dev \
   libgtest-dev libgmock-dev libbenchmark-dev \
   gnuplot-nox gmsh libgmsh-dev calculix-ccx \
-  libsuitesparse-dev libopenblas0-serial
+  libsuitesparse-dev libopenblas0-serial \
+  libopenmpi-dev openmpi-bin
 
 STUDIES := $(sort $(notdir $(patsubst %/,%,$(dir $(wildcard studies/*/CMakeLists.txt)))))
 

@@ -7,6 +7,9 @@
 #include <iostream>
 #include <sstream>
 
+#include <unistd.h>
+
+#include "check/cases.hpp"
 #include "core/error.hpp"
 #include "core/program.hpp"
 #include "io/atomic_file.hpp"
@@ -92,7 +95,9 @@ void usage(const std::string& name) {
               << "  --figures DIR    draw the figures there with gnuplot (default: no figures)\n"
               << "  --reference FILE the reference values (default reference/" << name << ".toml)\n"
               << "  --full           also run the thesis-size runs that CTest leaves out (make all passes it;\n"
-              << "                   the study's README says what they are); checks are the same\n";
+              << "                   the study's README says what they are); checks are the same\n"
+              << "  --jobs N         independent cases run at once (default: FEM_JOBS, else the number of\n"
+              << "                   hardware threads; 1: one after another); results are the same\n";
 }
 
 std::string join_joined(const std::string& a, const std::string& b) {
@@ -117,6 +122,16 @@ Study::Study(std::string name, int argc, char** argv) : name_(std::move(name)) {
         else if (arg == "--figures") figures_dir_ = value();
         else if (arg == "--reference") reference_path = value();
         else if (arg == "--full") full_ = true;
+        else if (arg == "--jobs") {
+            const std::string v = value();
+            std::size_t end = 0;
+            try {
+                jobs_ = std::stoi(v, &end);
+            } catch (const std::exception&) {
+                end = 0;
+            }
+            if (end != v.size() || jobs_ < 1) throw InputError("--jobs '" + v + "': a positive number of cases expected");
+        }
         else if (arg == "--help" || arg == "-h") {
             usage(name_);
             std::exit(0);
@@ -125,6 +140,13 @@ Study::Study(std::string name, int argc, char** argv) : name_(std::move(name)) {
     reference_ = load_reference(reference_path);
     if (reference_.study != name_)
         throw InputError(reference_path.string() + " is for study '" + reference_.study + "', not '" + name_ + "'");
+    if (ranks().rank() > 0) {
+        // An MPI rank other than 0 runs the study alike (check/cases.hpp) but writes nothing of it.
+        results_dir_ = std::filesystem::temp_directory_path() /
+                       ("fem-" + name_ + "-rank-" + std::to_string(ranks().rank()) + "-" + std::to_string(::getpid()));
+        figures_dir_.clear();
+        scratch_ = true;
+    }
     std::filesystem::create_directories(results_dir_);
     if (!figures_dir_.empty()) {
         figures_dir_ = std::filesystem::absolute(figures_dir_);
@@ -254,12 +276,18 @@ int Study::finish() {
     }
     std::cout << name_ << ": " << passed << " passed, " << failed << " failed, " << shown << " shown\n"
               << "results: " << results_dir_.string() << "/checks.json\n";
+    if (scratch_) std::filesystem::remove_all(results_dir_);
     return failed == 0 ? 0 : 1;
 }
 
 int run_study(std::string name, int argc, char** argv, const std::function<void(Study&)>& body) {
     const std::string program = name;
     return run_program(program.c_str(), [&]() {
+        // MPI ranks other than 0 print nothing (rank 0 prints what a serial run prints); errors still
+        // go to stderr.
+        if (ranks().rank() > 0 && !std::freopen("/dev/null", "w", stdout))
+            throw std::runtime_error("cannot silence the standard output of MPI rank " + std::to_string(ranks().rank()));
+        detail::share_cores_among_local_ranks();
         Study study(std::move(name), argc, argv);
         body(study);
         return study.finish();

@@ -64,6 +64,8 @@ public:
     /// --full: also run the thesis-size runs CTest leaves out (`make all` passes it). They may only
     /// add shown results: checks.json must be the same with and without it.
     bool full() const { return full_; }
+    /// --jobs N: independent cases run at once (check/cases.hpp); 0 when not given.
+    int jobs() const { return jobs_; }
 
     /// Numeric check of `reproduced` against the entry `id`.
     const CheckRecord& check(std::string_view id, double reproduced, std::string note = {});
@@ -100,6 +102,8 @@ private:
     std::string name_;
     std::filesystem::path results_dir_, figures_dir_, source_dir_;
     bool full_ = false;
+    int jobs_ = 0;
+    bool scratch_ = false;  // an MPI rank other than 0: results_dir_ is a scratch folder, removed at finish()
     ReferenceFile reference_;
     std::deque<CheckRecord> records_;  // deque: references handed out stay valid
     std::vector<std::string> checked_ids_;

@@ -2,11 +2,23 @@
 
 #include <H5Cpp.h>
 
+#include <mutex>
+
 #include "core/error.hpp"
 
 namespace fem::io {
 
+namespace {
+// Debian's HDF5 is built without thread safety: one HDF5 call at a time in the process (studies run
+// independent cases on several threads, check/cases.hpp). Recursive: a writer may read.
+std::recursive_mutex& hdf5_mutex() {
+    static std::recursive_mutex m;
+    return m;
+}
+}  // namespace
+
 struct H5Writer::Impl {
+    std::unique_lock<std::recursive_mutex> lock{hdf5_mutex()};  // first: released after the file closes
     std::filesystem::path path, partial;
     H5::H5File file;
     bool committed = false;
@@ -106,6 +118,7 @@ void H5Writer::commit() {
 }
 
 Eigen::MatrixXd read_h5_matrix(const std::filesystem::path& path, const std::string& dataset) {
+    const std::lock_guard<std::recursive_mutex> lock(hdf5_mutex());
     try {
         H5::Exception::dontPrint();
         H5::H5File file(path.string(), H5F_ACC_RDONLY);
