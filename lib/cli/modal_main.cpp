@@ -7,35 +7,25 @@
 
 #include "core/error.hpp"
 #include "core/program.hpp"
+#include "input/arguments.hpp"
 #include "modal/case.hpp"
 
 int main(int argc, char** argv) {
     return fem::run_program("fem-modal", [&]() {
+        const char* usage = "usage: fem-modal case.toml [--output DIR] [--modes N]";
         std::string case_file, output;
         int modes = 0;
-        for (int i = 1; i < argc; ++i) {
-            const std::string arg = argv[i];
-            if (arg == "--help" || arg == "-h") {
-                std::cout << "usage: fem-modal case.toml [--output DIR] [--modes N]\n";
+        fem::input::Arguments args(argc, argv, {"--help", "--output", "--modes"});
+        while (args.next()) {
+            if (args.is("--help") || args.is("-h")) {
+                std::cout << usage << "\n";
                 return 0;
             }
-            if (arg == "--output" || arg == "--modes") {
-                if (i + 1 >= argc) throw fem::InputError("option '" + arg + "' needs a value");
-                if (arg == "--output") output = argv[++i];
-                else {
-                    try {
-                        modes = std::stoi(argv[++i]);
-                    } catch (const std::exception&) {
-                        throw fem::InputError(std::string("--modes needs a number, got '") + argv[i] + "'");
-                    }
-                }
-            } else if (case_file.empty()) {
-                case_file = arg;
-            } else {
-                throw fem::InputError("unexpected argument '" + arg + "' (usage: fem-modal case.toml [--output DIR] [--modes N])");
-            }
+            if (args.is("--output")) output = args.value();
+            else if (args.is("--modes")) modes = args.integer<int>({.min = 1});
+            else args.positional(case_file);
         }
-        if (case_file.empty()) throw fem::InputError("no case file given (usage: fem-modal case.toml [--output DIR] [--modes N])");
+        if (case_file.empty()) throw fem::InputError(std::string("no case file given (") + usage + ")");
         fem::modal::ModalCase c = fem::modal::read_modal_case(case_file);
         if (!output.empty()) c.output = output;
         if (modes > 0) c.options.modes = modes;

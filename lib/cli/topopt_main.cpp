@@ -14,6 +14,7 @@
 
 #include "core/error.hpp"
 #include "core/program.hpp"
+#include "input/arguments.hpp"
 #include "io/table.hpp"
 #include "io/vtu.hpp"
 #include "topopt/case_file.hpp"
@@ -22,24 +23,19 @@ int main(int argc, char** argv) {
     return fem::run_program("fem-topopt", [&]() {
         std::string case_path, output;
         bool quiet = false;
-        for (int i = 1; i < argc; ++i) {
-            const std::string a = argv[i];
-            if (a == "--help" || a == "-h") {
+        fem::input::Arguments args(argc, argv, {"--help", "--output", "--quiet"});
+        while (args.next()) {
+            if (args.is("--help") || args.is("-h")) {
                 std::cout << "usage: fem-topopt CASE.toml [--output DIR] [--quiet]\n"
                              "Minimum-compliance topology optimization (SIMP, OC). Case file format: see\n"
                              "lib/topopt/case_file.hpp. Writes history.dat, density.dat and design.vtu to DIR.\n";
                 return 0;
-            } else if (a == "--output") {
-                if (i + 1 >= argc) throw fem::InputError("option --output needs a folder");
-                output = argv[++i];
-            } else if (a == "--quiet") {
+            } else if (args.is("--output")) {
+                output = args.value();
+            } else if (args.is("--quiet")) {
                 quiet = true;
-            } else if (!a.empty() && a[0] == '-') {
-                throw fem::InputError("unknown option '" + a + "' (see --help)");
-            } else if (case_path.empty()) {
-                case_path = a;
             } else {
-                throw fem::InputError("more than one case file given ('" + case_path + "', '" + a + "')");
+                args.positional(case_path);
             }
         }
         if (case_path.empty()) throw fem::InputError("no case file given (usage: fem-topopt CASE.toml [--output DIR])");

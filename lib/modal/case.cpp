@@ -5,117 +5,85 @@
 #include <sstream>
 
 #include <fmt/format.h>
-#include <toml++/toml.h>
 
 #include "assembly/model.hpp"
 #include "core/error.hpp"
+#include "input/toml_input.hpp"
 #include "mesh/gmsh.hpp"
 #include "mesh/mesh.hpp"
 
 namespace fem::modal {
 namespace {
 
-[[noreturn]] void fail(const std::filesystem::path& file, const std::string& what) {
-    throw InputError(file.string() + ": " + what);
-}
-
-DofMask parse_dofs(const toml::node_view<const toml::node>& v, DofMask fallback, const std::filesystem::path& file,
-                   const std::string& where) {
-    if (!v) return fallback;
-    const toml::array* a = v.as_array();
-    if (!a) fail(file, where + ".dofs must be an array of DOF names (ux uy uz rx ry rz)");
-    static const std::map<std::string, Dof> names = {{"ux", UX}, {"uy", UY}, {"uz", UZ}, {"rx", RX}, {"ry", RY}, {"rz", RZ}};
+DofMask parse_dofs(const input::TomlTable& t, DofMask fallback) {
+    if (!t.has("dofs")) return fallback;
+    static const std::map<std::string, DofMask> names = {{"ux", dof_bit(UX)}, {"uy", dof_bit(UY)}, {"uz", dof_bit(UZ)},
+                                                         {"rx", dof_bit(RX)}, {"ry", dof_bit(RY)}, {"rz", dof_bit(RZ)},
+                                                         {"all", kAllDofs}};
+    const auto list = t.choices("dofs", {"ux", "uy", "uz", "rx", "ry", "rz", "all"});
+    if (list.empty()) t.fail("dofs", "must name at least one DOF (ux uy uz rx ry rz all)");
     DofMask m = 0;
-    for (const auto& e : *a) {
-        const auto s = e.value<std::string>();
-        if (!s) fail(file, where + ".dofs holds a non-string");
-        if (*s == "all") m |= kAllDofs;
-        else if (auto it = names.find(*s); it != names.end()) m |= dof_bit(it->second);
-        else fail(file, where + ".dofs: unknown DOF '" + *s + "' (ux uy uz rx ry rz all)");
-    }
+    for (const auto& s : list) m |= names.at(s);
     return m;
-}
-
-template <class T>
-T required(const toml::table& t, const char* key, const std::filesystem::path& file, const std::string& where) {
-    const auto v = t[key].value<T>();
-    if (!v) fail(file, where + " needs '" + key + "'" + (t.contains(key) ? " of the right type" : ""));
-    return *v;
 }
 
 }  // namespace
 
 ModalCase read_modal_case(const std::filesystem::path& path) {
-    if (!std::filesystem::exists(path)) throw InputError("case file '" + path.string() + "' does not exist");
-    toml::table root;
-    try {
-        root = toml::parse_file(path.string());
-    } catch (const toml::parse_error& e) {
-        std::ostringstream msg;
-        msg << "line " << e.source().begin.line << ": " << e.description();
-        fail(path, msg.str());
-    }
-    const auto base = path.parent_path();
+    const input::TomlDocument doc = input::TomlDocument::read(path);
+    const input::TomlTable root = doc.root();
+    root.allow({"mesh", "output", "modes", "shift_hz", "mass", "materials", "parts", "supports", "couplings"});
     ModalCase c;
-    c.mesh = base / required<std::string>(root, "mesh", path, "the case");
-    c.output = base / root["output"].value_or(path.stem().string() + "_modes");
-    c.options.modes = static_cast<int>(root["modes"].value_or<int64_t>(10));
-    c.options.shift_hz = root["shift_hz"].value_or(0.0);
-    const std::string mass = root["mass"].value_or<std::string>("consistent");
-    if (mass == "lumped") c.mass = solid::MassKind::Lumped;
-    else if (mass != "consistent") fail(path, "mass = '" + mass + "' (consistent or lumped)");
+    c.mesh = root.path("mesh");
+    c.output = root.has("output") ? root.path("output") : doc.base() / (path.stem().string() + "_modes");
+    c.options.modes = root.integer_or<int>("modes", 10, {.min = 1});
+    c.options.shift_hz = root.real_or("shift_hz", 0.0);
+    c.mass = root.choice_or("mass", {"consistent", "lumped"}, "consistent") == "lumped" ? solid::MassKind::Lumped
+                                                                                       : solid::MassKind::Consistent;
 
     std::map<std::string, ElasticMaterial> materials;
-    if (const toml::table* mats = root["materials"].as_table())
-        for (const auto& [key, node] : *mats) {
-            const std::string name(key.str());
-            const toml::table* t = node.as_table();
-            if (!t) fail(path, "materials." + name + " must be a table with E, nu, rho");
-            const std::string where = "materials." + name;
-            materials.emplace(name, ElasticMaterial::make(name, required<double>(*t, "E", path, where),
-                                                          required<double>(*t, "nu", path, where),
-                                                          required<double>(*t, "rho", path, where)));
+    if (const auto mats = root.optional_table("materials"))
+        for (const auto& [name, t] : mats->entries()) {
+            t.allow({"E", "nu", "rho"});
+            materials.emplace(name, ElasticMaterial::make(name, t.real("E", input::Range::positive()),
+                                                          t.real("nu", input::Range::open(-1.0, 0.5)),
+                                                          t.real("rho", input::Range::positive())));
         }
-    const toml::array* parts = root["parts"].as_array();
-    if (!parts || parts->empty()) fail(path, "no [[parts]]: give each part of the mesh a material");
-    for (std::size_t i = 0; i < parts->size(); ++i) {
-        const toml::table* t = (*parts)[i].as_table();
-        const std::string where = fmt::format("parts[{}]", i);
-        if (!t) fail(path, where + " must be a table");
+    const auto parts = root.tables("parts");
+    if (parts.empty()) root.fail("no [[parts]]: give each part of the mesh a material");
+    for (const input::TomlTable& t : parts) {
+        t.allow({"name", "material", "thickness"});
         CasePart p;
-        p.name = required<std::string>(*t, "name", path, where);
-        const std::string mat = required<std::string>(*t, "material", path, where);
+        p.name = t.string("name");
+        const std::string mat = t.string("material");
         auto it = materials.find(mat);
-        if (it == materials.end()) fail(path, where + " (" + p.name + "): material '" + mat + "' is not defined under [materials]");
+        if (it == materials.end()) {
+            std::vector<std::string> known;
+            for (const auto& [name, m] : materials) known.push_back(name);
+            t.fail("material", "'" + mat + "' is not defined under [materials]" + input::did_you_mean(mat, known));
+        }
         p.material = it->second;
-        p.thickness = (*t)["thickness"].value_or(0.0);
-        if ((*t).contains("thickness") && !(p.thickness > 0))
-            fail(path, where + " (" + p.name + "): thickness must be positive");
+        p.thickness = t.real_or("thickness", 0.0, input::Range::positive());
         c.parts.push_back(p);
     }
-    if (const toml::array* sup = root["supports"].as_array())
-        for (std::size_t i = 0; i < sup->size(); ++i) {
-            const toml::table* t = (*sup)[i].as_table();
-            const std::string where = fmt::format("supports[{}]", i);
-            if (!t) fail(path, where + " must be a table");
-            c.supports.push_back({required<std::string>(*t, "set", path, where), parse_dofs((*t)["dofs"], kAllDofs, path, where)});
+    for (const input::TomlTable& t : root.tables("supports")) {
+        t.allow({"set", "dofs"});
+        c.supports.push_back({t.string("set"), parse_dofs(t, kAllDofs)});
+    }
+    for (const input::TomlTable& t : root.tables("couplings")) {
+        t.allow({"set", "sets", "dofs"});
+        CaseCoupling cp;
+        if (t.has("sets") == t.has("set")) t.fail("give exactly one of set (one node set) and sets (two node sets)");
+        if (t.has("sets")) {
+            cp.sets = t.strings("sets");
+            if (cp.sets.size() != 2) t.fail("sets", "must name two node sets (coincident node pairs)");
+        } else {
+            cp.sets.push_back(t.string("set"));
         }
-    if (const toml::array* cps = root["couplings"].as_array())
-        for (std::size_t i = 0; i < cps->size(); ++i) {
-            const toml::table* t = (*cps)[i].as_table();
-            const std::string where = fmt::format("couplings[{}]", i);
-            if (!t) fail(path, where + " must be a table");
-            CaseCoupling cp;
-            if (const toml::array* sets = (*t)["sets"].as_array()) {
-                for (const auto& s : *sets)
-                    if (auto v = s.value<std::string>()) cp.sets.push_back(*v);
-                if (cp.sets.size() != 2) fail(path, where + ".sets must name two node sets (coincident node pairs)");
-            } else {
-                cp.sets.push_back(required<std::string>(*t, "set", path, where));
-            }
-            cp.dofs = parse_dofs((*t)["dofs"], kTranslations, path, where);
-            c.couplings.push_back(cp);
-        }
+        cp.dofs = parse_dofs(t, kTranslations);
+        c.couplings.push_back(cp);
+    }
+    doc.finish();
     return c;
 }
 

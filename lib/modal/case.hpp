@@ -26,6 +26,10 @@
 //   sets = ["screw1_plate", "screw1_bracket"]   # node pairs at coincident places ...
 //   # set = "screw1"                            # ... or all nodes of one set share the DOFs
 //   dofs = ["ux", "uy", "uz"]   # default translations
+//
+// Every setting takes effect as written or is refused: a misspelt key, a value of the wrong type
+// (modes = 2.5), out of range (modes = 0, nu = 0.5) or not finite (E = nan) is an InputError naming
+// the file, the line and the key.
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -60,7 +64,8 @@ struct ModalCase {
     std::vector<CaseCoupling> couplings;
 };
 
-/// Parses and validates the case file; InputError naming the file, the key and the problem (missing
+/// Parses and validates the case file (input/toml_input.hpp: every key typed and range-checked,
+/// unknown or unused keys refused); InputError naming the file, line, key and problem (missing
 /// file, TOML syntax, unknown material, non-physical material, unknown DOF name...).
 ModalCase read_modal_case(const std::filesystem::path& path);
 

@@ -39,7 +39,10 @@
 //   [output]
 //   directory = "topopt-out"    # relative to the working directory
 //
-// Every mistake is an InputError naming the file, the table and the key.
+// Every mistake is an InputError naming the file, the line and the key (lib/input: wrong types,
+// non-integers, out-of-range and non-finite values, unknown keys and keys that have no effect with
+// the other settings, such as mesh on a rectangle or filter_radius with filter = "none"). A grid
+// the machine cannot hold is refused before it is built, with the memory it would need.
 #include <filesystem>
 #include <string>
 #include <string_view>
