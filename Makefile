@@ -50,10 +50,15 @@ deps:
 	  echo "deps: missing Debian packages; run:"; echo "  sudo apt-get install -y$$missing"; exit 1; \
 	fi
 
-$(BUILD)/CMakeCache.txt:
+# Configure once; the stamp is written only when CMake succeeded, so a configure that failed (say,
+# `make <study>` before the packages were installed) is simply run again by the next make instead of
+# leaving a half-made build folder that every later make trips over. CMake retries whatever it did
+# not find. tests/makefile/configure_recovers.sh checks this in a scratch copy.
+$(BUILD)/.configured:
 	cmake -S . -B $(BUILD) $(CMAKE_FLAGS)
+	@touch $@
 
-configure: $(BUILD)/CMakeCache.txt
+configure: $(BUILD)/.configured
 
 build: configure
 	cmake --build $(BUILD) -j $(JOBS)

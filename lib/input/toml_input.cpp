@@ -314,6 +314,23 @@ std::vector<std::vector<double>> TomlTable::matrix(std::string_view key, std::si
     return out;
 }
 
+std::vector<std::vector<std::string>> TomlTable::string_matrix(std::string_view key, std::size_t columns) const {
+    const Where at = where(key);
+    const std::string row_kind = fmt::format("rows of {} strings", columns);
+    const toml::array& a = array_of(required(key), at, row_kind);
+    if (a.empty()) fail(key, fmt::format("must be an array of {}, got an empty array", row_kind));
+    std::vector<std::vector<std::string>> out;
+    for (std::size_t i = 0; i < a.size(); ++i) {
+        const Where row_at = element_where(at, a[i], i);
+        const toml::array& row = array_of(a[i], row_at, "strings");
+        check_count(row, columns, row_at, "strings");
+        std::vector<std::string> values;
+        for (std::size_t j = 0; j < row.size(); ++j) values.push_back(string_of(row[j], element_where(row_at, row[j], j)));
+        out.push_back(std::move(values));
+    }
+    return out;
+}
+
 TomlTable TomlTable::table(std::string_view key) const {
     const toml::node& n = required(key);
     if (const auto* t = n.as_table()) return TomlTable(state_, t, key_path(key));

@@ -123,6 +123,8 @@ public:
     /// An array of rows, each an array of `columns` reals within range (a table of values, a time
     /// schedule [[t0, v0], [t1, v1], ...]); at least one row.
     std::vector<std::vector<double>> matrix(std::string_view key, std::size_t columns, Range range = Range::any()) const;
+    /// An array of rows of `columns` strings (a table of names); at least one row.
+    std::vector<std::vector<std::string>> string_matrix(std::string_view key, std::size_t columns) const;
 
     // --- tables ---
     TomlTable table(std::string_view key) const;

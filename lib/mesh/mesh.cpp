@@ -2,9 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
+#include <fmt/format.h>
+
 #include "core/error.hpp"
+#include "core/memory.hpp"
 
 namespace fem {
 
@@ -79,6 +83,16 @@ double centre_jacobian(ElementShape shape, const std::vector<Vec3>& x) {
     }
 }
 
+// Nodes and elements are numbered with int: a generator asked for more is refused before it
+// allocates anything (a 70000 x 70000 grid would overflow the node numbering).
+void require_int_count(double nodes, double elements, const std::string& what) {
+    constexpr double limit = std::numeric_limits<int>::max();
+    if (nodes > limit || elements > limit)
+        throw InputError(fmt::format("{} has {:.3g} nodes and {:.3g} elements; the library numbers both with 32-bit integers "
+                                     "(at most {})", what, nodes, elements, std::numeric_limits<int>::max()));
+    require_memory(nodes * sizeof(Vec3) + elements * 8 * sizeof(int), what);
+}
+
 }  // namespace
 
 void validate(const Mesh& mesh) {
@@ -113,6 +127,7 @@ void validate(const Mesh& mesh) {
 
 Mesh box_hex8(double lx, double ly, double lz, int nx, int ny, int nz, std::string part) {
     if (nx < 1 || ny < 1 || nz < 1) throw InputError("box_hex8 needs at least one element per direction");
+    require_int_count((nx + 1.0) * (ny + 1.0) * (nz + 1.0), 1.0 * nx * ny * nz, fmt::format("a {} x {} x {} hex8 box", nx, ny, nz));
     Mesh m;
     auto id = [&](int i, int j, int k) { return (k * (ny + 1) + j) * (nx + 1) + i; };
     for (int k = 0; k <= nz; ++k)
@@ -145,6 +160,11 @@ Mesh rectangle_quads(double lx, double ly, int nx, int ny, ElementShape shape, s
     if (nx < 1 || ny < 1) throw InputError("rectangle_quads needs at least one element per direction");
     if (shape != ElementShape::Quad4 && shape != ElementShape::Quad8)
         throw InputError("rectangle_quads makes quad4 or quad8 elements, not " + std::string(to_string(shape)));
+    {
+        const double s = shape == ElementShape::Quad8 ? 2 : 1;  // grid points per element edge
+        require_int_count((s * nx + 1) * (s * ny + 1), 1.0 * nx * ny,
+                          fmt::format("a {} x {} {} grid", nx, ny, to_string(shape)));
+    }
     Mesh m;
     const bool serendipity = shape == ElementShape::Quad8;
     // Quad8 uses a grid of half-spacing with the element-centre points left out.
@@ -181,6 +201,7 @@ Mesh rectangle_quads(double lx, double ly, int nx, int ny, ElementShape shape, s
 
 Mesh line_beam2(const Vec3& a, const Vec3& b, int n, std::string part) {
     if (n < 1) throw InputError("line_beam2 needs at least one element");
+    require_int_count(n + 1.0, n, fmt::format("a line of {} beam elements", n));
     Mesh m;
     for (int i = 0; i <= n; ++i) m.add_node(a + (b - a) * (static_cast<double>(i) / n));
     ElementBlock blk{std::move(part), ElementShape::Beam2, {}};

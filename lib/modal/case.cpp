@@ -1,5 +1,6 @@
 #include "modal/case.hpp"
 
+#include <algorithm>
 #include <map>
 #include <set>
 #include <sstream>
@@ -25,6 +26,41 @@ DofMask parse_dofs(const input::TomlTable& t, DofMask fallback) {
     DofMask m = 0;
     for (const auto& s : list) m |= names.at(s);
     return m;
+}
+
+// "; largest stiffness, smallest mass in part 'beam' (steel: E = 1e+308 Pa, nu = 0.3, rho = 7800 kg/m^3)":
+// the parts (and their materials) that hold the extremes of the stiffness and mass diagonals.
+std::string extremes(const Conditioning& cond, const AssembledSystem& sys, const Mesh& mesh, const ModalCase& c) {
+    // Reduced DOF -> node, node -> part (the first block that uses it).
+    std::vector<int> node_of_reduced(sys.size(), -1);
+    for (int node = 0; node < sys.dofs.node_count(); ++node)
+        for (int k = 0; k < sys.dofs.dofs(node); ++k) {
+            const int reduced = sys.reduction.reduced_of_full[sys.dofs.dof(node, k)];
+            if (reduced >= 0 && node_of_reduced[reduced] < 0) node_of_reduced[reduced] = node;
+        }
+    std::vector<int> block_of_node(mesh.node_count(), -1);
+    for (int b = static_cast<int>(mesh.blocks.size()) - 1; b >= 0; --b)
+        for (int n : mesh.blocks[b].connectivity) block_of_node[n] = b;
+    std::vector<std::pair<std::string, std::string>> roles;  // part, roles (in order of first mention)
+    for (const auto& [dof, role] : {std::pair{cond.dof_k_max, "largest stiffness"}, {cond.dof_k_min, "smallest stiffness"},
+                                    {cond.dof_m_max, "largest mass"}, {cond.dof_m_min, "smallest mass"}}) {
+        const int node = dof >= 0 ? node_of_reduced[dof] : -1;
+        if (node < 0 || block_of_node[node] < 0) continue;
+        const std::string& part = mesh.blocks[block_of_node[node]].part;
+        auto it = std::find_if(roles.begin(), roles.end(), [&](const auto& r) { return r.first == part; });
+        if (it == roles.end()) roles.emplace_back(part, role);
+        else it->second += std::string(", ") + role;
+    }
+    std::string out;
+    for (const auto& [part, role] : roles) {
+        out += fmt::format("; {} in part '{}'", role, part);
+        for (const CasePart& p : c.parts)
+            if (p.name == part)
+                out += fmt::format(" ({}: E = {:g} Pa, nu = {:g}, rho = {:g} kg/m^3{})", p.material.name,
+                                   p.material.youngs_modulus, p.material.poissons_ratio, p.material.density,
+                                   p.thickness > 0 ? fmt::format(", thickness {:g} m", p.thickness) : "");
+    }
+    return out;
 }
 
 }  // namespace
@@ -112,7 +148,18 @@ std::string run_modal_case(const ModalCase& c) {
         else model.couple(mesh.node_set(cp.sets[0]), cp.dofs);
     }
     const AssembledSystem sys = model.assemble();
-    const ModalResult r = solve_modes(sys, c.options);
+    // A solve that fails for numerical reasons names the parts and materials at the extremes of the
+    // stiffness and mass diagonals (the inputs that make the problem ill-conditioned).
+    const Conditioning cond(sys.stiffness, sys.mass);
+    ModalResult r;
+    try {
+        r = solve_modes(sys, c.options);
+    } catch (const SolverError& e) {
+        throw SolverError(e.what() + extremes(cond, sys, mesh, c));
+    } catch (const InputError& e) {
+        if (cond.representable()) throw;
+        throw InputError(e.what() + extremes(cond, sys, mesh, c));
+    }
     write_results(c.output, mesh, sys, r);
     return summary(sys, r) + "  results: " + c.output.string() + "/{frequencies.csv, modes.h5, modes.pvd}\n";
 }

@@ -13,6 +13,7 @@
 #include "input/toml_input.hpp"
 #include "material/elastic.hpp"
 #include "mesh/gmsh.hpp"
+#include "topopt/filter.hpp"
 
 namespace fem::topopt {
 namespace {
@@ -193,6 +194,9 @@ Case parse_case(std::string_view text, const std::string& source, const std::fil
         if (s.filter_radius > across)
             opt.fail("filter_radius", fmt::format("{} m is larger than the design domain ({:.3g} m across); the radius is in "
                                                   "metres and normally spans 1.5 to 3 elements", s.filter_radius, across));
+        require_memory(Filter::estimated_bytes(c.model.centroid, s.filter_radius),
+                       fmt::format("{}: a filter of radius {:g} m over {} elements", opt.where("filter_radius").str(),
+                                   s.filter_radius, c.model.element_count()));
     }
     s.move_limit = opt.real_or("move_limit", s.move_limit, input::Range::left_open(0, 1));
     s.change_tolerance = opt.real_or("change_tolerance", s.change_tolerance, input::Range::positive());

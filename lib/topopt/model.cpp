@@ -57,6 +57,12 @@ std::vector<Vec3> element_centroids(const Mesh& mesh) {
     return c;
 }
 
+void require_finite_stiffness(const Eigen::MatrixXd& k, const ElasticMaterial& material, double thickness) {
+    if (k.allFinite()) return;
+    throw InputError(fmt::format("the element stiffness overflows double precision with E = {:g} Pa and thickness {:g} m "
+                                 "(check the units: SI, Pa and m)", material.youngs_modulus, thickness));
+}
+
 Model plane_stress_model(const Mesh& mesh, const ElasticMaterial& material, double thickness) {
     if (mesh.blocks.empty() || mesh.element_count() == 0) throw InputError("topology model: the mesh has no elements");
     const ElementShape shape = mesh.blocks.front().shape;
@@ -106,6 +112,7 @@ Model plane_stress_model(const Mesh& mesh, const ElasticMaterial& material, doub
                 try {
                     m.unique_stiffness.push_back(
                         plane::stiffness(shape, x, material.youngs_modulus, material.poissons_ratio, thickness));
+                    require_finite_stiffness(m.unique_stiffness.back(), material, thickness);
                 } catch (const InputError& err) {
                     throw InputError(fmt::format("block '{}' element {}: {}", b.part, e, err.what()));
                 }

@@ -66,6 +66,10 @@ struct Model {
     }
 };
 
+/// InputError naming E and the thickness when an element matrix is not finite (E = 1e308 Pa
+/// overflows once multiplied by the strain-displacement products); callers add the element.
+void require_finite_stiffness(const Eigen::MatrixXd& k, const ElasticMaterial& material, double thickness);
+
 /// Plane-stress model (2 DOF per node) of every Quad4 or Quad8 element of `mesh` (all blocks, in
 /// block order; one shape for the whole mesh), thickness `thickness`. Element matrices are
 /// computed once per distinct geometry (translation-invariant comparison of the node coordinates).

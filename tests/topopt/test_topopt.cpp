@@ -223,3 +223,14 @@ TEST(TopoptShellModel, FoldedPlateCantileverBendsLikeABeam) {
 }
 
 }  // namespace
+
+TEST(TopoptFilter, RefusesARadiusWhoseWeightsCannotFit) {
+    // 500 x 500 centroids and a radius that covers them all: 6e10 weights (2 TB), refused before
+    // anything is allocated; the memory estimate of a normal radius (1.5 spacings) is about 9 neighbours.
+    std::vector<Vec3> c;
+    for (int j = 0; j < 500; ++j)
+        for (int i = 0; i < 500; ++i) c.emplace_back(i, j, 0);
+    const std::vector<double> v(c.size(), 1.0);
+    EXPECT_THROW(Filter(c, v, 2000.0), InputError);
+    EXPECT_NEAR(Filter::estimated_bytes(c, 1.5) / (32.0 * c.size()), 9.0, 0.1);
+}
