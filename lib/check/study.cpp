@@ -7,10 +7,14 @@
 #include <iostream>
 #include <sstream>
 
+#include <fmt/format.h>
+
+#include "check/run_health.hpp"
 #include "core/error.hpp"
 #include "core/program.hpp"
 #include "io/atomic_file.hpp"
 #include "io/gnuplot.hpp"
+#include "io/run_folder.hpp"
 
 namespace fem::check {
 
@@ -123,15 +127,20 @@ Study::Study(std::string name, int argc, char** argv) : name_(std::move(name)) {
         } else throw InputError("unknown option '" + arg + "' (see --help)");
     }
     reference_ = load_reference(reference_path);
+    health_exemptions_ = load_health_exemptions(reference_path);
     if (reference_.study != name_)
         throw InputError(reference_path.string() + " is for study '" + reference_.study + "', not '" + name_ + "'");
-    std::filesystem::create_directories(results_dir_);
+    // The results folder holds one run's set (io::RunFolder): checked and locked now, the study
+    // writes into its staging folder, finish() puts the set in place.
+    output_ = std::make_unique<io::RunFolder>(std::filesystem::absolute(results_dir_), name_);
+    results_dir_ = output_->staging();
     if (!figures_dir_.empty()) {
         figures_dir_ = std::filesystem::absolute(figures_dir_);
         std::filesystem::create_directories(figures_dir_);
     }
-    results_dir_ = std::filesystem::absolute(results_dir_);
 }
+
+Study::~Study() = default;
 
 CheckRecord Study::start_record(const ReferenceEntry& e, std::string note) const {
     CheckRecord r;
@@ -236,9 +245,21 @@ int Study::finish() {
     nlohmann::json checks = nlohmann::json::array();
     for (const auto& r : records_) checks.push_back(r.to_json());
     io::write_text_file(results_dir_ / "checks.json", checks.dump(2) + "\n");
+    // Explicit runs are judged on their energy health (check/run_health.hpp); the verdict goes into
+    // runs.json beside the run's values.
+    std::vector<std::pair<std::string, nlohmann::json>> recorded;
+    for (const auto& run : runs_) recorded.emplace_back(run.name, run.values);
+    std::vector<std::string> health_problems;
+    const auto health = judge_run_health(recorded, health_exemptions_, reference_.path.string(), health_problems);
     nlohmann::json runs = nlohmann::json::array();
-    for (const auto& run : runs_) runs.push_back({{"name", run.name}, {"values", run.values}});
+    for (const auto& run : runs_) {
+        nlohmann::json j = {{"name", run.name}, {"values", run.values}};
+        for (const auto& h : health)
+            if (h.run == run.name) j["health"] = h.to_json();
+        runs.push_back(std::move(j));
+    }
     io::write_text_file(results_dir_ / "runs.json", runs.dump(2) + "\n");
+    output_->commit();
 
     int failed = 0, passed = 0, shown = 0;
     std::cout << "\n" << name_ << ": checks against the thesis\n";
@@ -252,9 +273,14 @@ int Study::finish() {
         if (r.reference) std::cout << "  (checked against " << *r.reference << ")";
         std::cout << '\n';
     }
-    std::cout << name_ << ": " << passed << " passed, " << failed << " failed, " << shown << " shown\n"
-              << "results: " << results_dir_.string() << "/checks.json\n";
-    return failed == 0 ? 0 : 1;
+    for (const auto& h : health) std::cout << "  " << h.text() << '\n';
+    for (const auto& p : health_problems) std::cerr << name_ << ": " << p << '\n';
+    std::cout << name_ << ": " << passed << " passed, " << failed << " failed, " << shown << " shown"
+              << (health.empty() ? "" : fmt::format("; {} explicit runs judged on energy health, {} problems", health.size(),
+                                                     health_problems.size()))
+              << "\n"
+              << "results: " << output_->path().string() << "/checks.json\n";
+    return failed == 0 && health_problems.empty() ? 0 : 1;
 }
 
 int run_study(std::string name, int argc, char** argv, const std::function<void(Study&)>& body) {

@@ -16,6 +16,7 @@
 #include <filesystem>
 #include <deque>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <span>
 #include <string>
@@ -24,6 +25,11 @@
 #include <nlohmann/json.hpp>
 
 #include "check/reference.hpp"
+#include "check/run_health.hpp"
+
+namespace fem::io {
+class RunFolder;
+}
 
 namespace fem::check {
 
@@ -54,9 +60,12 @@ public:
     /// Parses the command line (--results DIR, --figures DIR, --reference FILE, --help) and loads
     /// reference/<name>.toml.
     Study(std::string name, int argc, char** argv);
+    ~Study();
 
     const std::string& name() const { return name_; }
-    /// build/results/<study>/, created on construction.
+    /// Where the study writes its results: the staging folder of build/results/<study>/
+    /// (io::RunFolder: checked and locked on construction; finish() moves the files into place, so
+    /// the folder always holds one complete run's set).
     const std::filesystem::path& results_dir() const { return results_dir_; }
     /// Where figures are drawn (figures/ for `make`, build/figures for CTest); empty: none.
     const std::filesystem::path& figures_dir() const { return figures_dir_; }
@@ -88,7 +97,8 @@ public:
     ///   set output figures.'/fig-2-6.'.ext
     void plot();
 
-    /// Writes checks.json and runs.json, prints the verdicts; returns 0 when every check passed.
+    /// Writes checks.json and runs.json, puts the run's files in place (replacing the previous run's
+    /// set), prints the verdicts; returns 0 when every check passed.
     int finish();
 
     const std::deque<CheckRecord>& records() const { return records_; }
@@ -104,6 +114,8 @@ private:
     std::deque<CheckRecord> records_;  // deque: references handed out stay valid
     std::vector<std::string> checked_ids_;
     std::vector<RunRecord> runs_;
+    std::unique_ptr<io::RunFolder> output_;
+    std::vector<HealthExemption> health_exemptions_;  // reference file's [[health_exemption]] (run_health.hpp)
 };
 
 /// main() of a study: builds the Study, runs body, finishes; InputError/SolverError become a

@@ -16,6 +16,7 @@
 #include "core/error.hpp"
 #include "core/program.hpp"
 #include "input/arguments.hpp"
+#include "io/run_folder.hpp"
 #include "io/table.hpp"
 #include "io/vtu.hpp"
 #include "topopt/case_file.hpp"
@@ -44,6 +45,9 @@ int topopt_program(int argc, char** argv) {
         if (case_path.empty()) throw fem::InputError("no case file given (usage: fem-topopt CASE.toml [--output DIR])");
         auto c = fem::topopt::read_case(case_path);
         if (!output.empty()) c.output_directory = output;
+        // The output folder is checked (writable, not in use by another run) before optimizing; the
+        // files replace the previous run's set only when they are all written (manifest.txt).
+        fem::io::RunFolder out(c.output_directory, "fem-topopt");
         std::cout << c.summary << "\nsparse Cholesky: " << fem::topopt::cholesky_backend() << "\n";
 
         // Progress: one updating line on a terminal, a line every 10 iterations otherwise.
@@ -56,7 +60,7 @@ int topopt_program(int argc, char** argv) {
         const auto r = fem::topopt::optimize(c.model, c.settings);
         if (!quiet && tty) std::cout << "\n";
 
-        const auto& dir = c.output_directory;
+        const auto& dir = out.staging();
         std::vector<double> it(r.iterations);
         for (int k = 0; k < r.iterations; ++k) it[k] = k + 1;
         fem::io::Table h;
@@ -76,7 +80,8 @@ int topopt_program(int argc, char** argv) {
                                  r.converged ? "converged" : "NOT converged (max_iterations reached)", r.iterations,
                                  r.compliance.back(), r.final_volume, r.seconds, r.seconds_per_iteration(),
                                  100 * r.seconds_factorizing / std::max(r.seconds - r.seconds_setup, 1e-12));
-        std::cout << "wrote " << (dir / "history.dat").string() << ", density.dat, design.vtu\n";
+        out.commit();
+        std::cout << "wrote " << (out.path() / "history.dat").string() << ", density.dat, design.vtu\n";
         return 0;
     });
 }

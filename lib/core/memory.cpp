@@ -1,5 +1,6 @@
 #include "core/memory.hpp"
 
+#include <atomic>
 #include <cstdio>
 #include <string>
 
@@ -22,12 +23,20 @@ std::string_view format_bytes(double bytes, char (&buffer)[32]) {
     return {buffer, static_cast<std::size_t>(n)};
 }
 
+namespace {
+std::atomic<std::uint64_t> memory_limit{0};
+}
+
+void set_memory_limit(std::uint64_t bytes) { memory_limit = bytes; }
+
 void require_memory(double bytes, std::string_view what) {
-    const std::uint64_t have = physical_memory_bytes();
+    const std::uint64_t physical = physical_memory_bytes(), limit = memory_limit;
+    const std::uint64_t have = limit > 0 && (physical == 0 || limit < physical) ? limit : physical;
     if (have == 0 || !(bytes > static_cast<double>(have))) return;
     char need_text[32], have_text[32];
-    throw InputError(std::string(what) + " needs about " + std::string(format_bytes(bytes, need_text)) +
-                     " of memory; this machine has " + std::string(format_bytes(static_cast<double>(have), have_text)));
+    throw InputError(std::string(what) + " needs about " + std::string(format_bytes(bytes, need_text)) + " of memory; " +
+                     (have == physical ? "this machine has " : "the limit set is ") +
+                     std::string(format_bytes(static_cast<double>(have), have_text)));
 }
 
 }  // namespace fem

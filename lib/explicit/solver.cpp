@@ -175,6 +175,8 @@ std::string RunSummary::text() const {
                      energy.contact, energy.external, energy.initial);
     s += fmt::format("  energy balance error: final {:.3g} J, max |error| {:.3g} J = {:.3g} of {:.4g} J\n",
                      energy.balance_error, energy.max_abs_balance_error, energy.relative_error(), energy.reference);
+    s += fmt::format("  hourglass energy: max {:.4g} J = {:.3g} of the max internal energy {:.4g} J\n",
+                     energy.max_hourglass, energy.hourglass_fraction(), energy.max_internal);
     s += fmt::format("  wall time {:.3f} s, {:.4g} element-cycles/s\n", wall_s, element_cycles_per_s);
     return s;
 }
@@ -206,6 +208,7 @@ nlohmann::json RunSummary::to_json() const {
             {"external_work_J", energy.external},
             {"energy_contact_J", energy.contact},
             {"energy_balance_relative_error", energy.relative_error()},
+            {"hourglass_fraction_of_internal", energy.hourglass_fraction()},
             {"wall_s", wall_s},
             {"element_cycles_per_s", element_cycles_per_s}};
 }
@@ -586,8 +589,21 @@ void ExplicitSolver::unstable(const std::string& why) {
             worst = i;
         }
     }
+    // The part and element around that node (its first element in the mesh), so that the message
+    // names the place a user can look at, not only a node number.
+    std::string around = "in no element";
+    const Mesh& mesh = model_.mesh();
+    for (int b = 0; worst >= 0 && b < static_cast<int>(mesh.blocks.size()) && around == "in no element"; ++b)
+        for (int e = 0; e < mesh.blocks[b].size(); ++e) {
+            const auto conn = mesh.blocks[b].element(e);
+            if (std::find(conn.begin(), conn.end(), worst) != conn.end()) {
+                around = fmt::format("in part '{}' ({} element {} of block {})", mesh.blocks[b].part,
+                                     to_string(mesh.blocks[b].shape), e, b);
+                break;
+            }
+        }
     const std::string where =
-        worst >= 0 ? fmt::format("node {} (reference position {:.4g}, {:.4g}, {:.4g})", worst, s_.X[worst].x(),
+        worst >= 0 ? fmt::format("node {} {} (reference position {:.4g}, {:.4g}, {:.4g})", worst, around, s_.X[worst].x(),
                                  s_.X[worst].y(), s_.X[worst].z())
                    : "no node";
     throw SolverError(fmt::format(
@@ -867,6 +883,8 @@ RunSummary ExplicitSolver::run() {
         E.balance_error =
             E.kinetic + E.internal + E.hourglass + E.damping + E.viscous + E.contact - E.external - E.initial;
         E.max_abs_balance_error = std::max(E.max_abs_balance_error, std::abs(E.balance_error));
+        E.max_internal = std::max(E.max_internal, E.internal);
+        E.max_hourglass = std::max(E.max_hourglass, std::abs(E.hourglass));
         input_scale_ = std::abs(e0_) + w_abs_ + std::abs(w_prov_);
         E.reference = std::max({E.reference, input_scale_, tot.ke_plus + e_int_ + e_hg_});
 
@@ -945,7 +963,11 @@ RunSummary ExplicitSolver::run() {
         w.write("energy/contact", history_.contact);
         w.write("energy/balance_error", history_.balance);
         for (const auto& [part, vm] : history_.max_von_mises) w.write("max_von_mises/" + part, vm);
-        w.attribute("/", "summary", summary_.to_json().dump());
+        // The summary without its timings (wall time, speed, threads: runs.json has them), so that
+        // identical runs give byte-identical files whatever the machine's load or thread count.
+        nlohmann::json summary = summary_.to_json();
+        for (const char* timing : {"wall_s", "element_cycles_per_s", "threads"}) summary.erase(timing);
+        w.attribute("/", "summary", summary.dump());
         w.commit();
     }
     if (opt_.print_summary) std::cout << summary_.text() << std::flush;

@@ -231,7 +231,12 @@ struct EnergySummary {
     double balance_error = 0; // kinetic + internal + hourglass + damping + viscous + contact - external - initial
     double max_abs_balance_error = 0;
     double reference = 0;     // energy scale the relative error is taken against
+    double max_internal = 0, max_hourglass = 0;  // largest over the run (the health measure below)
     double relative_error() const { return reference > 0 ? max_abs_balance_error / reference : 0.0; }
+    /// Hourglass energy as a fraction of internal energy: their largest values over the run, so that
+    /// a run whose internal energy has decayed at the end is still judged where it mattered (the
+    /// LS-DYNA rule of thumb: below 10 %; check/run_health.hpp).
+    double hourglass_fraction() const { return max_internal > 0 ? max_hourglass / max_internal : (max_hourglass > 0 ? 1.0 : 0.0); }
 };
 
 /// The run summary (LS-DYNA d3hsp/glstat style); to_json() feeds Study::record_run.

@@ -3,6 +3,7 @@
 #include <H5Cpp.h>
 
 #include "core/error.hpp"
+#include "io/atomic_file.hpp"
 
 namespace fem::io {
 
@@ -11,13 +12,28 @@ struct H5Writer::Impl {
     H5::H5File file;
     bool committed = false;
 
+    // Dataset creation without modification times (see the constructor).
+    static H5::DSetCreatPropList untimed() {
+        H5::DSetCreatPropList p;
+        H5Pset_obj_track_times(p.getId(), false);
+        return p;
+    }
+
     // Creates the groups along "a/b/c" (not c itself).
     void make_parents(const std::string& dataset) {
         std::size_t pos = 0;
         while ((pos = dataset.find('/', pos + 1)) != std::string::npos) {
             const std::string group = dataset.substr(0, pos);
             if (group.empty()) continue;
-            if (!file.nameExists(group)) file.createGroup(group);
+            if (!file.nameExists(group)) {
+                H5::LinkCreatPropList lcpl;
+                hid_t gcpl = H5Pcreate(H5P_GROUP_CREATE);
+                H5Pset_obj_track_times(gcpl, false);
+                const hid_t g = H5Gcreate2(file.getId(), group.c_str(), lcpl.getId(), gcpl, H5P_DEFAULT);
+                H5Pclose(gcpl);
+                if (g < 0) throw H5::GroupIException("H5Writer", "cannot create group " + group);
+                H5Gclose(g);
+            }
         }
     }
     // Calls f(object) with the file, group or dataset called `name` ("/" for the file).
@@ -37,12 +53,15 @@ struct H5Writer::Impl {
 
 H5Writer::H5Writer(std::filesystem::path path) : impl_(std::make_unique<Impl>()) {
     impl_->path = std::move(path);
-    impl_->partial = impl_->path;
-    impl_->partial += ".partial";
+    impl_->partial = partial_name(impl_->path);
     if (impl_->path.has_parent_path()) std::filesystem::create_directories(impl_->path.parent_path());
     try {
         H5::Exception::dontPrint();
-        impl_->file = H5::H5File(impl_->partial.string(), H5F_ACC_TRUNC);
+        // No object modification times: identical runs give byte-identical files (the root group
+        // takes its setting from the file creation list, groups and datasets from theirs).
+        H5::FileCreatPropList fcpl;
+        H5Pset_obj_track_times(fcpl.getId(), false);
+        impl_->file = H5::H5File(impl_->partial.string(), H5F_ACC_TRUNC, fcpl);
     } catch (const H5::Exception& e) {
         throw InputError("cannot create HDF5 file '" + impl_->path.string() + "': " + e.getDetailMsg());
     }
@@ -63,7 +82,7 @@ void H5Writer::write(const std::string& dataset, const std::vector<double>& valu
     impl_->make_parents(dataset);
     hsize_t dims[1] = {values.size()};
     H5::DataSpace space(1, dims);
-    auto ds = impl_->file.createDataSet(dataset, H5::PredType::NATIVE_DOUBLE, space);
+    auto ds = impl_->file.createDataSet(dataset, H5::PredType::NATIVE_DOUBLE, space, Impl::untimed());
     if (!values.empty()) ds.write(values.data(), H5::PredType::NATIVE_DOUBLE);
 }
 
@@ -71,7 +90,7 @@ void H5Writer::write(const std::string& dataset, const Eigen::MatrixXd& values) 
     impl_->make_parents(dataset);
     hsize_t dims[2] = {static_cast<hsize_t>(values.rows()), static_cast<hsize_t>(values.cols())};
     H5::DataSpace space(2, dims);
-    auto ds = impl_->file.createDataSet(dataset, H5::PredType::NATIVE_DOUBLE, space);
+    auto ds = impl_->file.createDataSet(dataset, H5::PredType::NATIVE_DOUBLE, space, Impl::untimed());
     const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> row_major = values;
     if (values.size()) ds.write(row_major.data(), H5::PredType::NATIVE_DOUBLE);
 }
@@ -80,7 +99,7 @@ void H5Writer::write_ints(const std::string& dataset, const std::vector<long lon
     impl_->make_parents(dataset);
     hsize_t dims[1] = {values.size()};
     H5::DataSpace space(1, dims);
-    auto ds = impl_->file.createDataSet(dataset, H5::PredType::NATIVE_LLONG, space);
+    auto ds = impl_->file.createDataSet(dataset, H5::PredType::NATIVE_LLONG, space, Impl::untimed());
     if (!values.empty()) ds.write(values.data(), H5::PredType::NATIVE_LLONG);
 }
 

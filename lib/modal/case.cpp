@@ -10,6 +10,7 @@
 #include "assembly/model.hpp"
 #include "core/error.hpp"
 #include "input/toml_input.hpp"
+#include "io/run_folder.hpp"
 #include "mesh/gmsh.hpp"
 #include "mesh/mesh.hpp"
 
@@ -65,13 +66,14 @@ std::string extremes(const Conditioning& cond, const AssembledSystem& sys, const
 
 }  // namespace
 
-ModalCase read_modal_case(const std::filesystem::path& path) {
-    const input::TomlDocument doc = input::TomlDocument::read(path);
+namespace {
+
+ModalCase from_document(const input::TomlDocument& doc, const std::string& stem) {
     const input::TomlTable root = doc.root();
     root.allow({"mesh", "output", "modes", "shift_hz", "mass", "materials", "parts", "supports", "couplings"});
     ModalCase c;
     c.mesh = root.path("mesh");
-    c.output = root.has("output") ? root.path("output") : doc.base() / (path.stem().string() + "_modes");
+    c.output = root.has("output") ? root.path("output") : doc.base() / (stem + "_modes");
     c.options.modes = root.integer_or<int>("modes", 10, {.min = 1});
     c.options.shift_hz = root.real_or("shift_hz", 0.0);
     c.mass = root.choice_or("mass", {"consistent", "lumped"}, "consistent") == "lumped" ? solid::MassKind::Lumped
@@ -123,7 +125,20 @@ ModalCase read_modal_case(const std::filesystem::path& path) {
     return c;
 }
 
+}  // namespace
+
+ModalCase read_modal_case(const std::filesystem::path& path) {
+    return from_document(input::TomlDocument::read(path), path.stem().string());
+}
+
+ModalCase parse_modal_case(std::string_view text, const std::string& source, const std::filesystem::path& base) {
+    return from_document(input::TomlDocument::parse(text, source, base), std::filesystem::path(source).stem().string());
+}
+
 std::string run_modal_case(const ModalCase& c) {
+    // The output folder is checked (writable, not in use by another run) before anything is solved;
+    // the results replace the previous run's set only when they are all written.
+    io::RunFolder out(c.output, "fem-modal");
     const Mesh mesh = read_gmsh(c.mesh);
     Model model(mesh);
     std::set<int> covered;
@@ -160,7 +175,8 @@ std::string run_modal_case(const ModalCase& c) {
         if (cond.representable()) throw;
         throw InputError(e.what() + extremes(cond, sys, mesh, c));
     }
-    write_results(c.output, mesh, sys, r);
+    write_results(out.staging(), mesh, sys, r);
+    out.commit();
     return summary(sys, r) + "  results: " + c.output.string() + "/{frequencies.csv, modes.h5, modes.pvd}\n";
 }
 

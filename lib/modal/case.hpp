@@ -32,6 +32,7 @@
 // the file, the line and the key.
 #include <filesystem>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "assembly/dof_map.hpp"
@@ -68,9 +69,13 @@ struct ModalCase {
 /// unknown or unused keys refused); InputError naming the file, line, key and problem (missing
 /// file, TOML syntax, unknown material, non-physical material, unknown DOF name...).
 ModalCase read_modal_case(const std::filesystem::path& path);
+/// The same from case-file text; `source` names it in messages, `base` is where relative paths start.
+ModalCase parse_modal_case(std::string_view text, const std::string& source, const std::filesystem::path& base = ".");
 
-/// Reads the mesh, builds the model, solves, writes the results into case.output and returns the
-/// run summary. Unknown physical groups and blocks without a part are InputErrors.
+/// Reads the mesh, builds the model, solves, writes the results into case.output as one run's set
+/// (io::RunFolder: the folder is checked before solving, a concurrent run into it is refused, the
+/// previous run's files are replaced and listed in manifest.txt) and returns the run summary.
+/// Unknown physical groups and blocks without a part are InputErrors.
 std::string run_modal_case(const ModalCase& c);
 
 }  // namespace fem::modal

@@ -70,7 +70,7 @@ struct TwistResult {
     RunSummary summary;
 };
 
-TwistResult twist_run(const std::string& name, const Mesh& mesh) {
+TwistResult twist_run(const std::string& name, const Mesh& mesh, const std::filesystem::path& h5) {
     const auto& tip = mesh.node_set("tip");
     const int p = nearest(mesh, tip, Vec3(0, kB, kLength)), m = nearest(mesh, tip, Vec3(0, -kB, kLength));
     ExplicitModel model(mesh);
@@ -86,6 +86,7 @@ TwistResult twist_run(const std::string& name, const Mesh& mesh) {
     o.history_nodes = {{"load+", p}, {"load-", m}};
     for (int n : tip) o.history_nodes.push_back({fmt::format("tip{}", n), n});
     o.name = name;
+    o.h5_path = h5;  // the histories and energies, for h5py (and the determinism test: tests/determinism)
     o.print_summary = false;
     o.progress = false;
     ExplicitSolver solver(model, o);
@@ -144,7 +145,7 @@ int main(int argc, char** argv) {
 
         // Step 1. Case A of Table 3-2: the mapped 5 x 5 cross-section, 29 layers (725 hexahedra).
         const Mesh case_a = finger::hex_finger(g, finger::mapped_cross_section(5), 29);
-        const TwistResult a = twist_run("finger-twist case A", case_a);
+        const TwistResult a = twist_run("finger-twist case A", case_a, out / "case-a.h5");
         study.record_run({a.summary.name, a.summary.to_json()});
 
         // Step 2. Fig 3-41: the maximum twist and when it happens.
@@ -169,7 +170,7 @@ int main(int argc, char** argv) {
         // Step 4. The same on a refined O-grid hexahedral mesh (2.5 mm): the discretization error
         // should shrink.
         const Mesh fine = finger::hex_finger(g, 2.5 * mm);
-        const TwistResult b = twist_run("finger-twist refined O-grid", fine);
+        const TwistResult b = twist_run("finger-twist refined O-grid", fine, out / "refined.h5");
         study.record_run({b.summary.name, b.summary.to_json()});
         const double theta_fine = settled(b.twist), sv_fine = saint_venant_dead_load(b.arm);
         study.check("sec-3-6/static/saint-venant-refined", theta_fine / sv_fine,

@@ -1,6 +1,8 @@
 // The check module: reference files, tolerances, check records, the report.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <filesystem>
 #include <fstream>
 
@@ -162,7 +164,11 @@ TEST(Study, WritesChecksAndFailsOnMissingOrWrongValues) {
     EXPECT_TRUE(j[5]["tolerance"].is_null());
     EXPECT_EQ(j[6]["id"], "fig-9-2/measured");
     EXPECT_EQ(j[6]["passed"], false);
-    EXPECT_FALSE(fs::exists(dir.path / "results" / "checks.json.partial"));
+    // The results folder holds the run's set and its manifest, no temporary or staging folder.
+    std::vector<std::string> files;
+    for (const auto& e : fs::directory_iterator(dir.path / "results")) files.push_back(e.path().filename().string());
+    std::sort(files.begin(), files.end());
+    EXPECT_EQ(files, (std::vector<std::string>{"checks.json", "manifest.txt", "runs.json"}));
 }
 
 TEST(Study, ShownValuesAreNotJudgedAndAllPassingExitsZero) {
