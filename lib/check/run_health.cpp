@@ -1,5 +1,7 @@
 #include "check/run_health.hpp"
 
+#include <fnmatch.h>
+
 #include <fmt/format.h>
 
 #include "input/toml_input.hpp"
@@ -47,7 +49,9 @@ std::vector<RunHealth> judge_run_health(const std::vector<std::pair<std::string,
                                         const std::vector<HealthExemption>& exemptions, const std::string& reference_file,
                                         std::vector<std::string>& problems) {
     std::vector<RunHealth> out;
-    std::vector<bool> used(exemptions.size(), false);
+    // Per exemption: did it match a run, and did a matched run need it (exceed that limit)?
+    std::vector<bool> matched(exemptions.size(), false), balance_needed(exemptions.size(), false),
+        hourglass_needed(exemptions.size(), false);
     for (const auto& [name, values] : runs) {
         if (!values.is_object() || !values.contains("energy_balance_relative_error") ||
             !values.contains("hourglass_fraction_of_internal"))
@@ -56,37 +60,40 @@ std::vector<RunHealth> judge_run_health(const std::vector<std::pair<std::string,
         h.run = name;
         h.balance_error = values["energy_balance_relative_error"].get<double>();
         h.hourglass_fraction = values["hourglass_fraction_of_internal"].get<double>();
-        h.balance_ok = h.balance_error <= kMaxBalanceError;        // nan fails
+        h.balance_ok = h.balance_error <= kMaxBalanceError;  // nan fails
         h.hourglass_ok = h.hourglass_fraction <= kMaxHourglassFraction;
         for (std::size_t k = 0; k < exemptions.size(); ++k) {
             const HealthExemption& e = exemptions[k];
-            if (e.run != name) continue;
-            used[k] = true;
-            const std::string at = fmt::format("{}:{}", reference_file, e.line);
+            if (!e.matches(name)) continue;
+            matched[k] = true;
             if (!e.balance.empty()) {
-                if (h.balance_ok)
-                    problems.push_back(fmt::format("{}: run '{}' is exempt from the balance limit but its error is {:.3g} % "
-                                                   "<= {:g} %: remove the exemption", at, name, 100 * h.balance_error,
-                                                   100 * kMaxBalanceError));
                 h.balance_exemption = e.balance;
+                balance_needed[k] = balance_needed[k] || !h.balance_ok;
             }
             if (!e.hourglass.empty()) {
-                if (h.hourglass_ok)
-                    problems.push_back(fmt::format("{}: run '{}' is exempt from the hourglass limit but its hourglass energy "
-                                                   "is {:.3g} % <= {:g} % of internal: remove the exemption", at, name,
-                                                   100 * h.hourglass_fraction, 100 * kMaxHourglassFraction));
                 h.hourglass_exemption = e.hourglass;
+                hourglass_needed[k] = hourglass_needed[k] || !h.hourglass_ok;
             }
         }
         if (!h.passed()) problems.push_back(h.text());
         out.push_back(std::move(h));
     }
-    for (std::size_t k = 0; k < exemptions.size(); ++k)
-        if (!used[k])
-            problems.push_back(fmt::format("{}:{}: the health exemption names run '{}', which the study did not record "
-                                           "(runs are named as in runs.json)", reference_file, exemptions[k].line,
-                                           exemptions[k].run));
+    for (std::size_t k = 0; k < exemptions.size(); ++k) {
+        const HealthExemption& e = exemptions[k];
+        const std::string at = fmt::format("{}:{}", reference_file, e.line);
+        if (!matched[k])
+            problems.push_back(fmt::format("{}: the health exemption names run '{}', which the study did not record "
+                                           "(runs are named as in runs.json)", at, e.run));
+        else if (!e.balance.empty() && !balance_needed[k])
+            problems.push_back(fmt::format("{}: run '{}' is exempt from the balance limit but meets it (<= {:g} %): remove "
+                                           "the exemption", at, e.run, 100 * kMaxBalanceError));
+        else if (!e.hourglass.empty() && !hourglass_needed[k])
+            problems.push_back(fmt::format("{}: run '{}' is exempt from the hourglass limit but meets it (<= {:g} % of "
+                                           "internal): remove the exemption", at, e.run, 100 * kMaxHourglassFraction));
+    }
     return out;
 }
+
+bool HealthExemption::matches(const std::string& name) const { return ::fnmatch(run.c_str(), name.c_str(), 0) == 0; }
 
 }  // namespace fem::check

@@ -8,12 +8,13 @@
 // reference/<study>.toml exempts that run with the reason (reference/README.md):
 //
 //   [[health_exemption]]
-//   run = "Case D"           # the run's name as in runs.json
+//   run = "Case D"           # the run's name as in runs.json; * and ? match any text (fnmatch), so
+//                            # "table-3-3 *" covers every run of a search
 //   balance = """why this run's balance error may exceed 1 %"""            # either or both
 //   hourglass = """why its hourglass energy may exceed 10 % of internal"""
 //
-// An exemption is part of the reference file's honesty: one that names no run of the study, or a
-// run that is healthy anyway, fails the study too, so that stale exemptions get removed.
+// An exemption is part of the reference file's honesty: one that matches no run of the study, or
+// whose runs all meet the limit anyway, fails the study too, so that stale exemptions get removed.
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -26,9 +27,10 @@ inline constexpr double kMaxBalanceError = 0.01;      // of the run's energy sca
 inline constexpr double kMaxHourglassFraction = 0.10; // of the internal energy
 
 struct HealthExemption {
-    std::string run;
+    std::string run;                 // a run name, or a pattern with * and ?
     std::string balance, hourglass;  // the reasons; empty: not exempt from that limit
     int line = 0;                    // in the reference file, for messages
+    bool matches(const std::string& run_name) const;
 };
 
 /// The [[health_exemption]] entries of a reference file (strict: unknown keys, a missing run name or

@@ -207,6 +207,7 @@ Mesh read_gmsh(const std::filesystem::path& path) {
     if (path.extension() != ".msh")
         throw InputError(where + " does not end in .msh (only Gmsh mesh files are read, not geometry or scripts)");
     if (!std::ifstream(path)) throw InputError(where + " cannot be opened for reading");
+    if (std::filesystem::file_size(path, ec) == 0) throw InputError(where + " is empty");
 
     GmshSession session;
     Mesh mesh;
@@ -217,7 +218,11 @@ Mesh read_gmsh(const std::filesystem::path& path) {
         // much later, as an inverted element). Such warnings are errors here.
         gmsh::option::setNumber("General.Verbosity", 2);  // warnings reach the logger (not the terminal)
         gmsh::logger::start();
-        gmsh::open(path.string());
+        // merge, not open: gmsh::open holds a process-wide "busy" lock that a read which fails midway
+        // never releases, and every later open in the process then reads nothing ("I'm busy! Ask me
+        // that later...", Gmsh 4.8; found by the fuzz target tests/fuzz/fuzz_gmsh). After clear(),
+        // merge reads a .msh file into the empty model the same way.
+        gmsh::merge(path.string());
         std::vector<std::string> log;
         gmsh::logger::get(log);
         gmsh::logger::stop();

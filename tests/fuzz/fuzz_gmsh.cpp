@@ -2,6 +2,8 @@
 // validation). Any input must end in a Mesh or an InputError: no crash, no sanitizer report, no leak.
 #include <cstddef>
 #include <cstdint>
+#include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -22,7 +24,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     }
     try {
         fem::read_gmsh(file);
-    } catch (const fem::InputError&) {
+    } catch (const fem::InputError& e) {
+        if (std::getenv("FEM_FUZZ_VERBOSE")) std::fprintf(stderr, "refused: %s\n", e.what());  // for triage
     }
     return 0;
 }

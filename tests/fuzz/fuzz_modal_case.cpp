@@ -2,6 +2,8 @@
 // must end in a ModalCase or an InputError.
 #include <cstddef>
 #include <cstdint>
+#include <cstdio>
+#include <cstdlib>
 #include <string_view>
 
 #include "core/error.hpp"
@@ -10,7 +12,8 @@
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     try {
         fem::modal::parse_modal_case(std::string_view(reinterpret_cast<const char*>(data), size), "fuzz.toml");
-    } catch (const fem::InputError&) {
+    } catch (const fem::InputError& e) {
+        if (std::getenv("FEM_FUZZ_VERBOSE")) std::fprintf(stderr, "refused: %s\n", e.what());  // for triage
     }
     return 0;
 }

@@ -4,6 +4,8 @@
 // refused as it would be on a small machine).
 #include <cstddef>
 #include <cstdint>
+#include <cstdio>
+#include <cstdlib>
 #include <string_view>
 
 #include "core/error.hpp"
@@ -15,7 +17,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     (void)limited;
     try {
         fem::topopt::parse_case(std::string_view(reinterpret_cast<const char*>(data), size), "fuzz.toml", FEM_FUZZ_BASE);
-    } catch (const fem::InputError&) {
+    } catch (const fem::InputError& e) {
+        if (std::getenv("FEM_FUZZ_VERBOSE")) std::fprintf(stderr, "refused: %s\n", e.what());  // for triage
     }
     return 0;
 }
