@@ -16,13 +16,15 @@ CMAKE_FLAGS ?= -DCMAKE_BUILD_TYPE=Release
 # environment to override.
 export OMP_WAIT_POLICY ?= passive
 
-# Every Debian package the project needs, build tools included.
+# Every Debian package the project needs, build tools included (chromium: headless screenshots of
+# figures/REPORT.html, to look at the report as a reader sees it).
 DEB_PACKAGES := cmake make g++ pkg-config \
   libeigen3-dev libspectra-dev libgsl-dev libhdf5-dev hdf5-tools \
   nlohmann-json3-dev libtomlplusplus-dev libfmt-dev \
   libgtest-dev libgmock-dev libbenchmark-dev \
   gnuplot-nox gmsh libgmsh-dev calculix-ccx \
-  libsuitesparse-dev libopenblas0-serial
+  libsuitesparse-dev libopenblas0-serial \
+  chromium
 
 STUDIES := $(sort $(notdir $(patsubst %/,%,$(dir $(wildcard studies/*/CMakeLists.txt)))))
 

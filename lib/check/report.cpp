@@ -164,7 +164,9 @@ std::string tolerance_text(const CheckRecord& r) {
     if (!r.tolerance) return r.basis == "trend" ? "must hold" : "-";
     std::string out;
     if (r.tolerance->rel > 0) out += number(100 * r.tolerance->rel) + " %";
-    if (r.tolerance->abs > 0 || r.tolerance->rel == 0) out += (out.empty() ? "" : " + ") + number(r.tolerance->abs) + (r.unit.empty() ? "" : " " + r.unit);
+    // An absolute tolerance on a value in percent is in percentage points.
+    const std::string unit = r.unit == "%" ? "points" : r.unit;
+    if (r.tolerance->abs > 0 || r.tolerance->rel == 0) out += (out.empty() ? "" : " + ") + number(r.tolerance->abs) + (unit.empty() ? "" : " " + unit);
     return out;
 }
 
@@ -329,6 +331,7 @@ int write_report(const ReportInputs& in) {
               "verification (a method recovers a known input, or a property holds by construction) or shown "
               "(nothing to judge against). A known miss is judged like any other check and counted as not "
               "reproduced. Generated " + stamp.str() + ".");
+    heading(2, "Scorecard");
     {
         const int n = all.count(Kind::Reproduction);
         paragraph("Reproduction: " + std::to_string(all.count(Kind::Reproduction, Verdict::Pass)) + " of " +
@@ -386,13 +389,26 @@ int write_report(const ReportInputs& in) {
     // What we do not reproduce, beside what the thesis gets wrong.
     heading(2, "Not reproduced");
     {
+        // One row per entry: the members of a series that miss share their reason.
         Block miss{Block::Table};
         miss.header = {"study", "item", "check", "kind", "thesis", "ours", "deviation", "tolerance", "why we miss"};
+        std::string last_key;
         for (const auto& s : studies)
-            for (const auto& r : s.records)
-                if (verdict(r) == Verdict::KnownMiss)
-                    miss.rows.push_back({s.name, r.source, r.id, std::string(kind_name(r.kind)), thesis_text(r),
-                                         value_text(r.reproduced), deviation_text(r), tolerance_text(r), r.known_miss});
+            for (const auto& r : s.records) {
+                if (verdict(r) != Verdict::KnownMiss) continue;
+                const std::string key = s.name + "\x01" + r.source + "\x01" + r.quantity + "\x01" + r.known_miss;
+                if (key == last_key) {
+                    auto& row = miss.rows.back();
+                    row[2] += ", " + r.id.substr(r.id.rfind('/') + 1);
+                    row[4] += "; " + thesis_text(r);
+                    row[5] += "; " + value_text(r.reproduced);
+                    row[6] += "; " + deviation_text(r);
+                    continue;
+                }
+                last_key = key;
+                miss.rows.push_back({s.name, r.source, r.id, std::string(kind_name(r.kind)), thesis_text(r),
+                                     value_text(r.reproduced), deviation_text(r), tolerance_text(r), r.known_miss});
+            }
         if (miss.rows.empty()) paragraph("None.");
         else {
             paragraph("Known misses: thesis results our models do not reach yet, each judged against the printed value "

@@ -353,6 +353,7 @@ TEST(Report, ListsEveryStudyAndTheDiscrepancies) {
     EXPECT_EQ(write_report({dir.path / "reference", dir.path / "results", dir.path / "figures"}), 0);
     std::ifstream md_in(dir.path / "figures" / "REPORT.md");
     const std::string md((std::istreambuf_iterator<char>(md_in)), {});
+    EXPECT_NE(md.find("## Scorecard"), std::string::npos);
     EXPECT_NE(md.find("## Thesis discrepancies"), std::string::npos);
     EXPECT_NE(md.find("the printed value is twice another row"), std::string::npos);
     EXPECT_NE(md.find("### Table 9-1"), std::string::npos);
