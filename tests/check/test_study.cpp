@@ -369,4 +369,16 @@ TEST(Report, ListsEveryStudyAndTheDiscrepancies) {
     EXPECT_NE(md.find("## Entries changed after their first run"), std::string::npos);
     EXPECT_NE(md.find("a miss is not hidden as shown"), std::string::npos);
     EXPECT_TRUE(fs::exists(dir.path / "figures" / "REPORT.html"));
+
+    // fem-report refuses a reference entry without a kind, naming the file and the entry.
+    auto no_kind = std::string(kReference);
+    no_kind.replace(no_kind.find("kind = \"consistency\"\n"), std::string("kind = \"consistency\"\n").size(), "");
+    write(dir.path / "reference" / "other.toml", no_kind);
+    try {
+        write_report({dir.path / "reference", dir.path / "results", dir.path / "figures"});
+        ADD_FAILURE() << "a reference entry without a kind was accepted";
+    } catch (const fem::InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("other.toml"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("'table-9-1/a' lacks 'kind'"), std::string::npos) << e.what();
+    }
 }
