@@ -18,14 +18,15 @@ CMAKE_FLAGS ?= -DCMAKE_BUILD_TYPE=Release
 # environment to override.
 export OMP_WAIT_POLICY ?= passive
 
-# Every Debian package the project needs, build tools included (clang and its runtime for `make fuzz`).
+# Every Debian package the project needs, build tools included (clang and its runtime for `make fuzz`;
+# chromium: headless screenshots of figures/REPORT.html, to look at the report as a reader sees it).
 DEB_PACKAGES := cmake make g++ pkg-config \
   libeigen3-dev libspectra-dev libgsl-dev libhdf5-dev hdf5-tools \
   nlohmann-json3-dev libtomlplusplus-dev libfmt-dev \
   libgtest-dev libgmock-dev libbenchmark-dev \
   gnuplot-nox gmsh libgmsh-dev calculix-ccx \
   libsuitesparse-dev libopenblas0-serial \
-  clang libclang-rt-14-dev
+  clang libclang-rt-14-dev chromium
 
 empty :=
 space := $(empty) $(empty)

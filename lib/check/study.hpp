@@ -36,18 +36,37 @@ namespace fem::check {
 /// One line of checks.json.
 struct CheckRecord {
     std::string id, source, quantity, unit, basis;
+    Kind kind = Kind::Reproduction;
     nlohmann::json thesis;      // printed value (number or statement)
     nlohmann::json reproduced;  // ours
     std::optional<double> reference;  // the value compared against when it is not the printed one
     std::optional<Tolerance> tolerance;
-    std::optional<bool> passed;  // empty for a value only shown (judged = false)
+    std::optional<bool> passed;  // within tolerance (trend: holds); empty for kind "shown"
     std::string note, discrepancy, reason;
+    std::string known_miss;      // why this is expected to miss (empty: it is expected to pass)
+    std::vector<HistoryEntry> history;
 
     nlohmann::json to_json() const;
+    /// Throws InputError for a record without a valid kind (written before kinds existed: re-run).
     static CheckRecord from_json(const nlohmann::json& j);
     /// Relative deviation of ours from the printed thesis value, when both are numbers.
     std::optional<double> deviation() const;
 };
+
+/// The verdict of a record: the one place that classifies checks (studies' exit status, the report's
+/// counts, tables and sections all use it).
+enum class Verdict {
+    Pass,            // within tolerance / the trend holds
+    Fail,            // misses, and is not a known miss
+    KnownMiss,       // misses, as its entry's known_miss says: "not reproduced"
+    UnexpectedPass,  // a known miss that now passes: fails the study until the entry is updated
+    Shown,           // kind "shown": nothing to judge against
+};
+Verdict verdict(const CheckRecord& r);
+/// "pass", "FAIL", "not reproduced", "FAIL: known miss passes", "shown".
+std::string_view verdict_label(Verdict v);
+/// Whether the verdict fails the study (Fail, UnexpectedPass).
+bool fails_study(Verdict v);
 
 /// The run summary of one solver run, listed in the report (wall time, steps, element-cycles/s).
 struct RunRecord {
