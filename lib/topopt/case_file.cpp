@@ -224,8 +224,9 @@ Case parse_case(std::string_view text, const std::string& source, const std::fil
 
     // --- optimization ---
     const auto& opt = r.table(root, "optimization");
-    r.only(opt, "optimization", {"removed", "volume_fraction", "penalty", "min_stiffness", "filter", "filter_radius",
-                                 "move_limit", "change_tolerance", "max_iterations"});
+    r.only(opt, "optimization", {"removed", "volume_fraction", "penalty", "min_stiffness", "min_density", "filter",
+                                 "filter_radius", "move_limit", "change_tolerance", "max_iterations", "oc_tolerance",
+                                 "solver", "solver_tolerance"});
     auto& s = c.settings;
     if (opt.contains("removed") == opt.contains("volume_fraction"))
         r.fail(opt, "[optimization]: give exactly one of removed (fraction removed) and volume_fraction (fraction kept)");
@@ -240,6 +241,19 @@ Case parse_case(std::string_view text, const std::string& source, const std::fil
     }
     s.penalty = opt["penalty"].value<double>().value_or(s.penalty);
     s.min_stiffness = opt["min_stiffness"].value<double>().value_or(s.min_stiffness);
+    // Issue 16: the 99-line code's lower density bound (E = x^p E0, x >= x_min) instead of E_min.
+    if (opt.contains("min_density")) {
+        if (opt.contains("min_stiffness")) r.fail(opt, "[optimization]: give min_stiffness (E_min/E0) or min_density (x_min), not both");
+        s.min_density = r.number(opt, "optimization", "min_density");
+        s.min_stiffness = 0.0;
+    }
+    s.oc_tolerance = opt["oc_tolerance"].value<double>().value_or(s.oc_tolerance);  // the 88-line code: 1e-3
+    const std::string solver = opt["solver"].value<std::string>().value_or("auto");
+    if (solver == "auto") s.solver = SolverKind::Automatic;
+    else if (solver == "direct") s.solver = SolverKind::Direct;
+    else if (solver == "multigrid") s.solver = SolverKind::Multigrid;
+    else r.fail(opt, fmt::format("[optimization]: solver '{}' is not auto, direct or multigrid", solver));
+    s.solver_tolerance = opt["solver_tolerance"].value<double>().value_or(s.solver_tolerance);
     const std::string filter = opt["filter"].value<std::string>().value_or("sensitivity");
     if (filter == "none") s.filter = FilterKind::None;
     else if (filter == "sensitivity") s.filter = FilterKind::Sensitivity;
@@ -254,8 +268,11 @@ Case parse_case(std::string_view text, const std::string& source, const std::fil
     } catch (const InputError& e) {
         r.fail(opt, std::string("[optimization]: ") + e.what());
     }
-    summary << fmt::format("\nsupports: {}, load cases: {}, volume kept: {:g}, filter: {} r = {:g} m", supports->size(),
-                           c.model.loads.size(), s.volume_fraction, filter, s.filter_radius);
+    summary << fmt::format("\nsupports: {}, load cases: {}, volume kept: {:g}, filter: {} r = {:g} m, {}, OC bisection "
+                           "to {:g}, solver: {}", supports->size(), c.model.loads.size(), s.volume_fraction, filter,
+                           s.filter_radius,
+                           s.min_density > 0 ? fmt::format("x_min = {:g}", s.min_density) : fmt::format("E_min/E0 = {:g}", s.min_stiffness),
+                           s.oc_tolerance, solver);
 
     if (const auto* out = root["output"].as_table()) {
         r.only(*out, "output", {"directory"});
