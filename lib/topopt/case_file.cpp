@@ -226,7 +226,7 @@ Case parse_case(std::string_view text, const std::string& source, const std::fil
     const auto& opt = r.table(root, "optimization");
     r.only(opt, "optimization", {"removed", "volume_fraction", "penalty", "min_stiffness", "min_density", "filter",
                                  "filter_radius", "move_limit", "change_tolerance", "max_iterations", "oc_tolerance",
-                                 "solver", "solver_tolerance"});
+                                 "solver", "solver_tolerance", "projection", "projection_beta_max"});
     auto& s = c.settings;
     if (opt.contains("removed") == opt.contains("volume_fraction"))
         r.fail(opt, "[optimization]: give exactly one of removed (fraction removed) and volume_fraction (fraction kept)");
@@ -254,6 +254,11 @@ Case parse_case(std::string_view text, const std::string& source, const std::fil
     else if (solver == "multigrid") s.solver = SolverKind::Multigrid;
     else r.fail(opt, fmt::format("[optimization]: solver '{}' is not auto, direct or multigrid", solver));
     s.solver_tolerance = opt["solver_tolerance"].value<double>().value_or(s.solver_tolerance);
+    const std::string projection = opt["projection"].value<std::string>().value_or("none");
+    if (projection == "none") s.projection = Projection::None;
+    else if (projection == "heaviside") s.projection = Projection::Heaviside;
+    else r.fail(opt, fmt::format("[optimization]: projection '{}' is not none or heaviside", projection));
+    s.projection_beta_max = opt["projection_beta_max"].value<double>().value_or(s.projection_beta_max);
     const std::string filter = opt["filter"].value<std::string>().value_or("sensitivity");
     if (filter == "none") s.filter = FilterKind::None;
     else if (filter == "sensitivity") s.filter = FilterKind::Sensitivity;

@@ -73,6 +73,43 @@ void csr_multiply(const RowMajor& A, const double* x, double* y) {
     }
 }
 
+// r = b - A x (fused: one pass).
+void csr_residual(const RowMajor& A, const double* x, const double* b, double* r) {
+    const int* outer = A.outerIndexPtr();
+    const int* inner = A.innerIndexPtr();
+    const double* v = A.valuePtr();
+    for (Eigen::Index i = 0; i < A.rows(); ++i) {
+        double s = b[i];
+        for (int k = outer[i]; k < outer[i + 1]; ++k) s -= v[k] * x[inner[k]];
+        r[i] = s;
+    }
+}
+
+// y += A x.
+void csr_multiply_add(const RowMajor& A, const double* x, double* y) {
+    const int* outer = A.outerIndexPtr();
+    const int* inner = A.innerIndexPtr();
+    const double* v = A.valuePtr();
+    for (Eigen::Index i = 0; i < A.rows(); ++i) {
+        double s = 0;
+        for (int k = outer[i]; k < outer[i + 1]; ++k) s += v[k] * x[inner[k]];
+        y[i] += s;
+    }
+}
+
+// A forward Gauss-Seidel sweep for A x = b from x = 0: the entries right of the diagonal multiply
+// zeros, so only the lower triangle is read.
+void gauss_seidel_from_zero(const RowMajor& A, const std::vector<int>& diag, const double* b, double* x) {
+    const int* outer = A.outerIndexPtr();
+    const int* inner = A.innerIndexPtr();
+    const double* v = A.valuePtr();
+    for (Eigen::Index i = 0; i < A.rows(); ++i) {
+        double s = b[i];
+        for (int k = outer[i]; k < diag[i]; ++k) s -= v[k] * x[inner[k]];
+        x[i] = s / v[diag[i]];
+    }
+}
+
 // One Gauss-Seidel sweep for A x = b, rows in increasing (forward) or decreasing order.
 void gauss_seidel(const RowMajor& A, const std::vector<int>& diag, const double* b, double* x, bool forward) {
     const int* outer = A.outerIndexPtr();
@@ -87,6 +124,16 @@ void gauss_seidel(const RowMajor& A, const std::vector<int>& diag, const double*
     }
 }
 
+// Kc += P^T Kf P (N: the element DOF count when fixed at compile time).
+template <int N>
+void galerkin_add(Eigen::MatrixXd& Kc, const Eigen::MatrixXd& P, const Eigen::MatrixXd& Kf) {
+    using M = Eigen::Matrix<double, N, N>;
+    const Eigen::Map<const M> p(P.data(), P.rows(), P.cols()), kf(Kf.data(), Kf.rows(), Kf.cols());
+    Eigen::Map<M> kc(Kc.data(), Kc.rows(), Kc.cols());
+    const M kp = kf * p;
+    kc.noalias() += p.transpose() * kp;
+}
+
 }  // namespace
 
 struct GridMultigrid::Impl {
@@ -99,7 +146,7 @@ struct GridMultigrid::Impl {
     detail::Cholesky llt;
 
     explicit Impl(const Model& m) : model(m) {}
-    void vcycle(std::size_t l);
+    void vcycle(std::size_t l, const double* b = nullptr);
 };
 
 GridMultigrid::GridMultigrid(const Model& model, const std::vector<int>& free_of, int n_free, int coarse_dofs, int sweeps)
@@ -253,7 +300,8 @@ bool GridMultigrid::set_scale(const Eigen::VectorXd& scale) {
             for (const auto& [child, tr] : C.children[ce]) {
                 if (child < 0) continue;
                 if (l == 1) Kc.noalias() += scale(child) * C.transfer[tr];
-                else Kc.noalias() += C.transfer[tr].transpose() * (F.K[child] * C.transfer[tr]);
+                else if (C.nd == 8) galerkin_add<8>(Kc, C.transfer[tr], F.K[child]);  // plane: fixed size, fast
+                else galerkin_add<Eigen::Dynamic>(Kc, C.transfer[tr], F.K[child]);
             }
         }
         fill(C, [&](std::size_t e) { return std::pair{1.0, C.K[e].data()}; });
@@ -262,22 +310,22 @@ bool GridMultigrid::set_scale(const Eigen::VectorXd& scale) {
     return detail::factorize_regular(I.llt, I.coarsest);
 }
 
-void GridMultigrid::Impl::vcycle(std::size_t l) {
+// One V-cycle for A_l x = b (b: the level's right-hand side, L.b unless given); result in L.x.
+void GridMultigrid::Impl::vcycle(std::size_t l, const double* b) {
     Level& L = levels[l];
+    if (!b) b = L.b.data();
     if (l + 1 == levels.size()) {
-        L.x = llt.solve(L.b);
+        L.x = llt.solve(Eigen::Map<const Eigen::VectorXd>(b, L.n));
         return;
     }
-    L.x.setZero();
-    for (int s = 0; s < sweeps; ++s) gauss_seidel(L.A, L.diag, L.b.data(), L.x.data(), true);
-    csr_multiply(L.A, L.x.data(), L.r.data());
-    L.r = L.b - L.r;
+    gauss_seidel_from_zero(L.A, L.diag, b, L.x.data());
+    for (int s = 1; s < sweeps; ++s) gauss_seidel(L.A, L.diag, b, L.x.data(), true);
+    csr_residual(L.A, L.x.data(), b, L.r.data());
     Level& C = levels[l + 1];
     csr_multiply(L.R, L.r.data(), C.b.data());
     vcycle(l + 1);
-    csr_multiply(L.P, C.x.data(), L.r.data());
-    L.x += L.r;
-    for (int s = 0; s < sweeps; ++s) gauss_seidel(L.A, L.diag, L.b.data(), L.x.data(), false);
+    csr_multiply_add(L.P, C.x.data(), L.x.data());
+    for (int s = 0; s < sweeps; ++s) gauss_seidel(L.A, L.diag, b, L.x.data(), false);
 }
 
 Eigen::VectorXd GridMultigrid::multiply(const Eigen::VectorXd& x) const {
@@ -295,30 +343,34 @@ int GridMultigrid::solve(const Eigen::VectorXd& f, Eigen::VectorXd& u, double to
         u.setZero();
         return 0;
     }
-    Eigen::VectorXd r(f.size()), p, q(f.size());
+    Eigen::VectorXd r(f.size()), p(f.size()), q(f.size());
+    const Eigen::VectorXd& z = L.x;  // the preconditioned residual, written by vcycle(0)
+    const Eigen::Index n = f.size();
+    const double limit = tolerance * fnorm;
     int it = 0;
     // The recursively updated residual drifts from f - K u by round-off (the stiffness contrast is
     // 1e9): CG stops on it, then restarts from the true residual until that one is small too.
     while (true) {
-        csr_multiply(L.A, u.data(), r.data());
-        r = f - r;
-        if (r.norm() <= tolerance * fnorm) return it;
+        csr_residual(L.A, u.data(), f.data(), r.data());
+        if (r.norm() <= limit) return it;
         if (it >= max_iterations) break;
-        L.b = r;
-        I.vcycle(0);
-        p = L.x;
-        double rz = r.dot(p);
+        I.vcycle(0, r.data());
+        p = z;
+        double rz = r.dot(z);
         while (it < max_iterations) {
             ++it;
             csr_multiply(L.A, p.data(), q.data());
             const double alpha = rz / p.dot(q);
-            u.noalias() += alpha * p;
-            r.noalias() -= alpha * q;
-            if (r.norm() <= tolerance * fnorm) break;
-            L.b = r;
-            I.vcycle(0);
-            const double rz_new = r.dot(L.x);
-            p = L.x + (rz_new / rz) * p;
+            double rr = 0;
+            for (Eigen::Index i = 0; i < n; ++i) {  // u += alpha p, r -= alpha q, |r|^2 in one pass
+                u[i] += alpha * p[i];
+                r[i] -= alpha * q[i];
+                rr += r[i] * r[i];
+            }
+            if (std::sqrt(rr) <= limit) break;
+            I.vcycle(0, r.data());
+            const double rz_new = r.dot(z), beta = rz_new / rz;
+            for (Eigen::Index i = 0; i < n; ++i) p[i] = z[i] + beta * p[i];
             rz = rz_new;
         }
     }

@@ -36,6 +36,11 @@ void Settings::validate() const {
         throw InputError("give a minimum stiffness ratio E_min/E0 > 0 or a minimum density x_min > 0 (K must stay regular)");
     if (!(oc_tolerance > 0 && oc_tolerance < 0.1))
         throw InputError(fmt::format("OC bisection tolerance must lie in (0, 0.1), got {}", oc_tolerance));
+    if (projection != Projection::None && filter != FilterKind::Density)
+        throw InputError("the Heaviside projection acts on density-filtered designs: set the filter to density");
+    if (projection != Projection::None && !(projection_beta_max >= 1 && projection_interval >= 1))
+        throw InputError(fmt::format("projection: beta_max must be >= 1 (got {}) and the interval >= 1 (got {})",
+                                     projection_beta_max, projection_interval));
     if (!(solver_tolerance > 0 && solver_tolerance < 1))
         throw InputError(fmt::format("solver tolerance must lie in (0, 1), got {}", solver_tolerance));
     if (filter != FilterKind::None && !(filter_radius > 0))
@@ -233,6 +238,15 @@ double compliance_and_gradient(const Model& model, StiffnessSolver& solver, cons
     return c;
 }
 
+double HeavisideProjection::operator()(double t) const {
+    return (std::tanh(beta * eta) + std::tanh(beta * (t - eta))) / (std::tanh(beta * eta) + std::tanh(beta * (1 - eta)));
+}
+
+double HeavisideProjection::slope(double t) const {
+    const double th = std::tanh(beta * (t - eta));
+    return beta * (1 - th * th) / (std::tanh(beta * eta) + std::tanh(beta * (1 - eta)));
+}
+
 void apply_regions(const Model& model, Eigen::VectorXd& rho, double void_density) {
     for (int e = 0; e < model.element_count(); ++e) {
         if (model.region[e] == Region::Void) rho(e) = void_density;
@@ -260,23 +274,35 @@ Result optimize(const Model& model, const Settings& s) {
     std::optional<Filter> filter;
     if (s.filter != FilterKind::None) filter.emplace(model.centroid, model.volume, s.filter_radius);
     const bool density_filter = s.filter == FilterKind::Density;
+    const bool projected = s.projection == Projection::Heaviside;
     const double x_min = s.min_density;
+
+    HeavisideProjection project{1.0, 0.5};  // beta grows by continuation
+    double& beta = project.beta;
+    auto project_slope = [&](double t) { return project.slope(t); };
 
     Eigen::VectorXd x = Eigen::VectorXd::Constant(ne, s.initial_density > 0 ? s.initial_density : s.volume_fraction);
     apply_regions(model, x, x_min);
+    Eigen::VectorXd filtered;  // W x of the design analysed (projection only)
     auto physical = [&](const Eigen::VectorXd& design) {
         Eigen::VectorXd rho = density_filter ? filter->densities(design) : design;
+        if (projected) {
+            filtered = rho;
+            for (int e = 0; e < ne; ++e) rho(e) = project(rho(e));
+        }
         apply_regions(model, rho, x_min);
         return rho;
     };
-    // The volume is linear in the design variables: V(rho(x)) = dv . x with dv = v_design, or
-    // W^T v_design for the density filter (passive elements carry no design volume).
-    const Eigen::VectorXd dv = density_filter ? filter->backward(v_design) : v_design;
+    // Without projection the volume is linear in the design variables: V(rho(x)) = dv . x with
+    // dv = v_design, or W^T v_design for the density filter (passive elements carry no design
+    // volume). With projection, dv is the chain rule at the current design.
+    Eigen::VectorXd dv = density_filter ? filter->backward(v_design) : v_design;
 
     Result r;
     r.solver = solver.description();
     r.seconds_setup = since(t0);
     Eigen::VectorXd rho = physical(x), dc, xnew(ne), lower(ne), upper(ne), step(ne);
+    int iterations_at_beta = 0;
     for (int it = 1; it <= s.max_iterations; ++it) {
         const double assembly0 = solver.assembly_seconds(), solve0 = solver.solve_seconds();
         double t_sens = 0;
@@ -287,8 +313,15 @@ Result optimize(const Model& model, const Settings& s) {
         r.timing.sensitivities += t_sens;
         r.solver_iterations += solver.last_iterations();
         auto t = Clock::now();
-        if (density_filter) dc = filter->backward(dc);
-        else if (s.filter == FilterKind::Sensitivity) dc = filter->sensitivities(x, dc);
+        if (projected) {  // chain rule through the projection, then the filter
+            const Eigen::VectorXd slope = filtered.unaryExpr(project_slope);
+            dc = filter->backward(dc.cwiseProduct(slope));
+            dv = filter->backward(v_design.cwiseProduct(slope));
+        } else if (density_filter) {
+            dc = filter->backward(dc);
+        } else if (s.filter == FilterKind::Sensitivity) {
+            dc = filter->sensitivities(x, dc);
+        }
         r.timing.filter += since(t);
         r.compliance.push_back(c);
         r.volume.push_back(rho.dot(v_design) / V);
@@ -309,7 +342,7 @@ Result optimize(const Model& model, const Settings& s) {
         auto update = [&](double lambda) {
             const double k = 1.0 / std::sqrt(lambda);
             for (int e = 0; e < ne; ++e) xnew(e) = std::clamp(step(e) * k, lower(e), upper(e));
-            return xnew.dot(dv) / V;
+            return projected ? physical(xnew).dot(v_design) / V : xnew.dot(dv) / V;
         };
         double lo = gmax * 1e-40, hi = gmax * 1e10;
         while ((hi - lo) > s.oc_tolerance * (hi + lo)) {
@@ -318,15 +351,29 @@ Result optimize(const Model& model, const Settings& s) {
             else hi = mid;
         }
         update(hi);  // the feasible side of the bracket
-        const double change = (xnew - x).cwiseAbs().maxCoeff();
+        double change = (xnew - x).cwiseAbs().maxCoeff();
         x = xnew;
         r.timing.update += since(t);
         t = Clock::now();
+        const Eigen::VectorXd rho_old = rho;
         rho = physical(x);
+        // With projection, design variables in the flat parts of the step move without changing the
+        // structure (and keep moving by the move limit): the change that counts is the physical one.
+        if (projected) change = (rho - rho_old).cwiseAbs().maxCoeff();
         r.timing.filter += since(t);
         r.change.push_back(change);
         r.iterations = it;
         if (s.on_iteration) s.on_iteration(it, c, r.volume.back(), change);
+        if (projected) {
+            r.beta.push_back(beta);
+            // Continuation: sharpen when the design has settled or the step has lasted long enough.
+            if (beta < s.projection_beta_max && (change < s.change_tolerance || ++iterations_at_beta >= s.projection_interval)) {
+                beta = std::min(2 * beta, s.projection_beta_max);
+                iterations_at_beta = 0;
+                rho = physical(x);
+                continue;
+            }
+        }
         if (change < s.change_tolerance) {
             r.converged = true;
             break;

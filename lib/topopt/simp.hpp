@@ -20,6 +20,16 @@
 // in x (V(W x) = (W^T v) . x for the density filter), so the bisection never filters.
 // Converged when max |x_new - x| < 0.01, or stopped at max_iterations.
 //
+// Heaviside projection (Guest, Prevost & Belytschko 2004; the tanh form of Wang, Lazarov & Sigmund
+// 2011), on top of the density filter: the physical density is
+//   rho = [tanh(beta eta) + tanh(beta (x~ - eta))] / [tanh(beta eta) + tanh(beta (1 - eta))],
+// x~ = W x, eta = 0.5: a smoothed step that turns the grey intermediate densities of the filtered
+// design into 0 or 1. Continuation: beta starts at 1 and doubles every projection_interval
+// iterations, or earlier when the design change falls below change_tolerance, up to
+// projection_beta_max; the loop converges only at beta_max, on the change of the projected
+// densities (design variables where the step is flat move without changing the structure). The volume of the projected design is
+// not linear in x, so then the OC bisection projects at every step.
+//
 // K u = f is solved by one of two StiffnessSolver back-ends: a sparse Cholesky (CHOLMOD) for small
 // and unstructured meshes, or multigrid-preconditioned CG (topopt/multigrid.hpp) on structured grids
 // above a size threshold, warm-started from the previous design's displacement. Either way the
@@ -38,6 +48,17 @@
 
 namespace fem::topopt {
 
+/// Heaviside projection of the filtered densities (needs FilterKind::Density).
+enum class Projection { None, Heaviside };
+
+/// The smoothed Heaviside step of Wang, Lazarov & Sigmund (2011): maps [0, 1] onto [0, 1] with
+/// H(0) = 0, H(1) = 1, H(eta) = eta; sharper as beta grows.
+struct HeavisideProjection {
+    double beta = 1.0, eta = 0.5;
+    double operator()(double t) const;
+    double slope(double t) const;  // dH/dt
+};
+
 /// How K u = f is solved: Automatic = multigrid-CG on a structured grid with more than
 /// Settings::multigrid_threshold free DOF, the direct sparse Cholesky otherwise.
 enum class SolverKind { Automatic, Direct, Multigrid };
@@ -49,13 +70,16 @@ struct Settings {
     double min_density = 0.0;       // x_min, the lower density bound (classic SIMP); 0: none
     FilterKind filter = FilterKind::Sensitivity;
     double filter_radius = 0.0;     // r [m]; required (> 0) unless filter is None
+    Projection projection = Projection::None;
+    double projection_beta_max = 32;  // the last continuation step
+    int projection_interval = 50;     // iterations per continuation step (at most)
     double move_limit = 0.2;        // m of the OC update
     double change_tolerance = 0.01; // converged when max |x_new - x| < this
     double oc_tolerance = 1e-12;    // OC bisection: relative bracket width (hi - lo) / (hi + lo)
     int max_iterations = 1000;      // the 300 x 100 MBB beam with the density filter needs 837
     double initial_density = -1;    // < 0: start from V* (a feasible uniform design)
     SolverKind solver = SolverKind::Automatic;
-    double solver_tolerance = 1e-8; // multigrid-CG: stop at |f - K u| <= this |f|
+    double solver_tolerance = 1e-6; // multigrid-CG: stop at |f - K u| <= this |f|
     int multigrid_threshold = 20000;  // Automatic: multigrid above this many free DOF (on a grid)
     int multigrid_coarsest = 4000;    // multigrid: coarsen until at most this many unknowns remain
     /// Called after every iteration (progress output); may be empty.
@@ -79,7 +103,8 @@ struct Result {
     double final_volume = 0.0;       // its volume fraction of the design region (Eq 2-52)
     std::vector<double> compliance;  // objective of every iteration (of the design analysed then) [J]
     std::vector<double> volume;      // volume fraction of the design region at every iteration
-    std::vector<double> change;      // max |x_new - x| of every iteration
+    std::vector<double> change;      // max |x_new - x| of every iteration (with projection: of rho)
+    std::vector<double> beta;        // Heaviside sharpness of every iteration (empty without projection)
     std::vector<double> load_case_compliance;  // of the final analysed design, per load case [J]
     int iterations = 0;
     bool converged = false;
