@@ -118,7 +118,8 @@ StiffnessSolver::StiffnessSolver(const Model& model, const Settings& settings) :
     I.u.assign(model.loads.size(), Eigen::VectorXd::Zero(ndof));
 
     const bool multigrid = settings.solver == SolverKind::Multigrid ||
-                           (settings.solver == SolverKind::Automatic && model.grid && I.n_free > settings.multigrid_threshold);
+                           (settings.solver == SolverKind::Automatic && model.grid && model.dofs_per_node == 2 &&
+                            I.n_free > settings.multigrid_threshold);  // shells: only when asked (untimed)
     SerialOpenMP serial;
     const Eigen::VectorXd solid = Eigen::VectorXd::Ones(model.element_count());
     bool regular = true;

@@ -59,8 +59,9 @@ struct HeavisideProjection {
     double slope(double t) const;  // dH/dt
 };
 
-/// How K u = f is solved: Automatic = multigrid-CG on a structured grid with more than
-/// Settings::multigrid_threshold free DOF, the direct sparse Cholesky otherwise.
+/// How K u = f is solved: Automatic = multigrid-CG on a structured plane-stress grid with more than
+/// Settings::multigrid_threshold free DOF, the direct sparse Cholesky otherwise (shell models on a
+/// grid use the multigrid only when asked).
 enum class SolverKind { Automatic, Direct, Multigrid };
 
 struct Settings {
