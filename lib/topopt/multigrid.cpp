@@ -61,40 +61,23 @@ void fill(Level& L, const auto& element_matrix) {
     }
 }
 
-// y = A x (A symmetric, row-major).
-void csr_multiply(const RowMajor& A, const double* x, double* y) {
+// The row products s_i = (A x)_i of a row-major matrix, handed to store(i, s_i).
+template <class Store>
+void csr_rows(const RowMajor& A, const double* x, Store store) {
     const int* outer = A.outerIndexPtr();
     const int* inner = A.innerIndexPtr();
     const double* v = A.valuePtr();
     for (Eigen::Index i = 0; i < A.rows(); ++i) {
         double s = 0;
         for (int k = outer[i]; k < outer[i + 1]; ++k) s += v[k] * x[inner[k]];
-        y[i] = s;
+        store(i, s);
     }
 }
-
-// r = b - A x (fused: one pass).
+// y = A x;  y += A x;  r = b - A x (each one pass).
+void csr_multiply(const RowMajor& A, const double* x, double* y) { csr_rows(A, x, [y](Eigen::Index i, double s) { y[i] = s; }); }
+void csr_multiply_add(const RowMajor& A, const double* x, double* y) { csr_rows(A, x, [y](Eigen::Index i, double s) { y[i] += s; }); }
 void csr_residual(const RowMajor& A, const double* x, const double* b, double* r) {
-    const int* outer = A.outerIndexPtr();
-    const int* inner = A.innerIndexPtr();
-    const double* v = A.valuePtr();
-    for (Eigen::Index i = 0; i < A.rows(); ++i) {
-        double s = b[i];
-        for (int k = outer[i]; k < outer[i + 1]; ++k) s -= v[k] * x[inner[k]];
-        r[i] = s;
-    }
-}
-
-// y += A x.
-void csr_multiply_add(const RowMajor& A, const double* x, double* y) {
-    const int* outer = A.outerIndexPtr();
-    const int* inner = A.innerIndexPtr();
-    const double* v = A.valuePtr();
-    for (Eigen::Index i = 0; i < A.rows(); ++i) {
-        double s = 0;
-        for (int k = outer[i]; k < outer[i + 1]; ++k) s += v[k] * x[inner[k]];
-        y[i] += s;
-    }
+    csr_rows(A, x, [b, r](Eigen::Index i, double s) { r[i] = b[i] - s; });
 }
 
 // A forward Gauss-Seidel sweep for A x = b from x = 0: the entries right of the diagonal multiply
