@@ -175,8 +175,9 @@ Case parse_case(std::string_view text, const std::string& source, const std::fil
 
     // --- optimization ---
     const auto opt = root.table("optimization");
-    opt.allow({"removed", "volume_fraction", "penalty", "min_stiffness", "filter", "filter_radius", "move_limit",
-               "change_tolerance", "max_iterations"});
+    opt.allow({"removed", "volume_fraction", "penalty", "min_stiffness", "min_density", "filter", "filter_radius",
+               "move_limit", "change_tolerance", "max_iterations", "oc_tolerance", "solver", "solver_tolerance",
+               "projection", "projection_beta_max"});
     auto& s = c.settings;
     if (opt.has("removed") == opt.has("volume_fraction"))
         opt.fail("give exactly one of removed (fraction removed) and volume_fraction (fraction kept)");
@@ -198,6 +199,19 @@ Case parse_case(std::string_view text, const std::string& source, const std::fil
                        fmt::format("{}: a filter of radius {:g} m over {} elements", opt.where("filter_radius").str(),
                                    s.filter_radius, c.model.element_count()));
     }
+    // Issue 16: the 99-line code's lower density bound (E = x^p E0, x >= x_min) instead of E_min.
+    if (opt.has("min_density")) {
+        if (opt.has("min_stiffness")) opt.fail("min_density", "give min_stiffness (E_min/E0) or min_density (x_min), not both");
+        s.min_density = opt.real("min_density", input::Range::open(0, 1));
+        s.min_stiffness = 0.0;
+    }
+    s.oc_tolerance = opt.real_or("oc_tolerance", s.oc_tolerance, input::Range::positive());  // the 88-line code: 1e-3
+    const std::string solver = opt.choice_or("solver", {"auto", "direct", "multigrid"}, "auto");
+    s.solver = solver == "direct" ? SolverKind::Direct : solver == "multigrid" ? SolverKind::Multigrid : SolverKind::Automatic;
+    s.solver_tolerance = opt.real_or("solver_tolerance", s.solver_tolerance, input::Range::positive());
+    const std::string projection = opt.choice_or("projection", {"none", "heaviside"}, "none");
+    s.projection = projection == "heaviside" ? Projection::Heaviside : Projection::None;
+    s.projection_beta_max = opt.real_or("projection_beta_max", s.projection_beta_max, input::Range::at_least(1));
     s.move_limit = opt.real_or("move_limit", s.move_limit, input::Range::left_open(0, 1));
     s.change_tolerance = opt.real_or("change_tolerance", s.change_tolerance, input::Range::positive());
     s.max_iterations = opt.integer_or<int>("max_iterations", s.max_iterations, {.min = 1});
@@ -206,8 +220,11 @@ Case parse_case(std::string_view text, const std::string& source, const std::fil
     } catch (const InputError& e) {
         opt.fail(e.what());
     }
-    summary << fmt::format("\nsupports: {}, load cases: {}, volume kept: {:g}, filter: {} r = {:g} m", supports.size(),
-                           c.model.loads.size(), s.volume_fraction, filter, s.filter_radius);
+    summary << fmt::format("\nsupports: {}, load cases: {}, volume kept: {:g}, filter: {} r = {:g} m, {}, OC bisection "
+                           "to {:g}, solver: {}", supports.size(), c.model.loads.size(), s.volume_fraction, filter,
+                           s.filter_radius,
+                           s.min_density > 0 ? fmt::format("x_min = {:g}", s.min_density) : fmt::format("E_min/E0 = {:g}", s.min_stiffness),
+                           s.oc_tolerance, solver);
 
     if (const auto out = root.optional_table("output")) {
         out->allow({"directory"});

@@ -55,6 +55,7 @@ Model shell_model(const Mesh& mesh, const ElasticMaterial& material, double thic
             m.stiffness_of.push_back(it->second);
             m.volume.push_back(area * thickness);
         }
+    m.grid = structured_grid(mesh);
     return m;
 }
 
