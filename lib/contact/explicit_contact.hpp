@@ -10,7 +10,7 @@
 //       contact::ContactSurface::from_part(mesh, "finger", rubber),
 //       contact::ContactSurface::from_part(mesh, "object", aluminium), co));
 //   contact::prescribe_rigid_motion(model, mesh.node_set("root"),           // root on the drum
-//       contact::RigidMotion::rotation(drum_centre, Vec3::UnitZ(), contact::TimeFunction::constant(2.095)));
+//       contact::RigidMotion::rotation(drum_centre, Vec3::UnitZ(), contact::Curve::constant(2.095)));
 //   ExplicitSolver solver(model, opt);
 //   solver.observer = [&](const ExplicitSolver& s) { ... c.force_on_master(), c.contacts() ... };
 //

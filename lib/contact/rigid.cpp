@@ -10,40 +10,7 @@
 
 namespace fem::contact {
 
-TimeFunction::TimeFunction(std::vector<std::pair<double, double>> points, const char* what) : p_(std::move(points)) {
-    if (p_.empty()) throw InputError(fmt::format("{}: no points", what));
-    for (std::size_t i = 0; i < p_.size(); ++i) {
-        if (!std::isfinite(p_[i].first) || !std::isfinite(p_[i].second))
-            throw InputError(fmt::format("{}: point {} is not finite", what, i));
-        if (i > 0 && !(p_[i].first > p_[i - 1].first))
-            throw InputError(fmt::format("{}: times must increase strictly (point {} at t = {})", what, i, p_[i].first));
-    }
-}
-
-double TimeFunction::operator()(double t) const {
-    if (p_.empty()) return 0.0;
-    if (t <= p_.front().first) return p_.front().second;
-    if (t >= p_.back().first) return p_.back().second;
-    const auto it = std::upper_bound(p_.begin(), p_.end(), t, [](double a, const auto& q) { return a < q.first; });
-    const auto& [t1, y1] = *it;
-    const auto& [t0, y0] = *(it - 1);
-    return y0 + (y1 - y0) * (t - t0) / (t1 - t0);
-}
-
-double TimeFunction::integral(double t) const {
-    if (p_.empty() || t <= 0.0) return 0.0;
-    // Trapezoids over the breakpoints in (0, t): exact for a piecewise-linear function.
-    std::vector<double> knots{0.0};
-    for (const auto& [ti, yi] : p_)
-        if (ti > 0.0 && ti < t) knots.push_back(ti);
-    knots.push_back(t);
-    double s = 0.0;
-    for (std::size_t i = 1; i < knots.size(); ++i)
-        s += 0.5 * ((*this)(knots[i - 1]) + (*this)(knots[i])) * (knots[i] - knots[i - 1]);
-    return s;
-}
-
-RigidMotion RigidMotion::rotation(const Vec3& point, const Vec3& axis, TimeFunction omega) {
+RigidMotion RigidMotion::rotation(const Vec3& point, const Vec3& axis, Curve omega) {
     if (!(axis.norm() > 0.0)) throw InputError("rigid rotation: the axis has zero length");
     RigidMotion m;
     m.c_ = point;
@@ -52,13 +19,13 @@ RigidMotion RigidMotion::rotation(const Vec3& point, const Vec3& axis, TimeFunct
     return m;
 }
 
-RigidMotion RigidMotion::translation(const Vec3& direction, TimeFunction speed) {
+RigidMotion RigidMotion::translation(const Vec3& direction, Curve speed) {
     RigidMotion m;
     m.with_translation(direction, std::move(speed));
     return m;
 }
 
-RigidMotion& RigidMotion::with_translation(const Vec3& direction, TimeFunction speed) {
+RigidMotion& RigidMotion::with_translation(const Vec3& direction, Curve speed) {
     if (!(direction.norm() > 0.0)) throw InputError("rigid translation: the direction has zero length");
     dir_ = direction.normalized();
     speed_ = std::move(speed);

@@ -17,23 +17,9 @@
 
 #include "contact/surface.hpp"
 #include "core/types.hpp"
+#include "explicit/curve.hpp"
 
 namespace fem::contact {
-
-/// A piecewise-linear function of time with its exact integral (held at the end values outside).
-class TimeFunction {
-public:
-    TimeFunction() = default;  // zero
-    /// Points (t_i, y_i), t strictly increasing; throws InputError naming `what` otherwise.
-    TimeFunction(std::vector<std::pair<double, double>> points, const char* what = "time function");
-    static TimeFunction constant(double y) { return TimeFunction({{0.0, y}}); }
-    double operator()(double t) const;
-    /// int_0^t y(s) ds (t >= 0).
-    double integral(double t) const;
-
-private:
-    std::vector<std::pair<double, double>> p_;
-};
 
 class RigidMotion {
 public:
@@ -41,11 +27,11 @@ public:
     static RigidMotion fixed() { return {}; }
     /// Rotation about the axis through `point` along `axis` (normalised) at angular velocity
     /// omega(t) [rad/s] (right-hand rule about `axis`).
-    static RigidMotion rotation(const Vec3& point, const Vec3& axis, TimeFunction omega);
+    static RigidMotion rotation(const Vec3& point, const Vec3& axis, Curve omega);
     /// Translation with velocity direction * speed(t) [m/s].
-    static RigidMotion translation(const Vec3& direction, TimeFunction speed);
+    static RigidMotion translation(const Vec3& direction, Curve speed);
     /// Adds a translation to a rotation (the axis moves with it).
-    RigidMotion& with_translation(const Vec3& direction, TimeFunction speed);
+    RigidMotion& with_translation(const Vec3& direction, Curve speed);
 
     double angle(double t) const { return omega_.integral(t); }
     Vec3 angular_velocity(double t) const { return omega_(t) * axis_; }
@@ -61,7 +47,7 @@ public:
 
 private:
     Vec3 c_ = Vec3::Zero(), axis_ = Vec3::UnitZ(), dir_ = Vec3::Zero();
-    TimeFunction omega_, speed_;
+    Curve omega_ = Curve::constant(0.0), speed_ = Curve::constant(0.0);
 };
 
 struct RigidSurface {

@@ -115,7 +115,7 @@ Result run_case(const Case& c, double finger_h, const std::filesystem::path& out
     // which outputs are robust (README: the raw stress maxima are not).
     const double perturb = std::getenv("ROTFINGER_PERTURB") ? std::atof(std::getenv("ROTFINGER_PERTURB")) : 0.0;
     prescribe_rigid_motion(model, finger.node_set("root"),
-                           RigidMotion::rotation(Vec3::Zero(), Vec3::UnitZ(), TimeFunction::constant(kOmega * (1 + perturb))));
+                           RigidMotion::rotation(Vec3::Zero(), Vec3::UnitZ(), Curve::constant(kOmega * (1 + perturb))));
     ContactOptions co;
     co.friction = {0.6, 0.6, 0.0};  // Table 3-6
     std::vector<int> sensor;

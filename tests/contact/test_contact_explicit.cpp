@@ -286,7 +286,7 @@ TEST(ContactExplicit, NodesTiedToARotatingRigidBodyFollowItExactly) {
     ExplicitModel model(mesh);
     model.add_hex8("finger", mat);
     const RigidMotion drum =
-        RigidMotion::rotation(Vec3::Zero(), Vec3::UnitZ(), TimeFunction({{0.0, 0.0}, {0.05, 2.095}}));  // 20 rpm ramp
+        RigidMotion::rotation(Vec3::Zero(), Vec3::UnitZ(), Curve({{0.0, 0.0}, {0.05, 2.095}}));  // 20 rpm ramp
     const auto& root = mesh.node_set("x0");
     prescribe_rigid_motion(model, root, drum);
     model.set_mass_damping("finger", 7.5);
@@ -329,7 +329,7 @@ TEST(ContactExplicit, RotatingFingerSweepsIntoARigidEllipse) {
     model.add_hex8("finger", rubber);
     model.set_mass_damping("finger", 7.5);
     const std::vector<int> root = finger.node_set("root");  // the face on the drum (finger nodes come first)
-    const RigidMotion drum = RigidMotion::rotation(Vec3::Zero(), Vec3::UnitZ(), TimeFunction::constant(omega));
+    const RigidMotion drum = RigidMotion::rotation(Vec3::Zero(), Vec3::UnitZ(), Curve::constant(omega));
     prescribe_rigid_motion(model, root, drum);
     ContactOptions co;
     co.friction = {0.6, 0.6, 0.0};

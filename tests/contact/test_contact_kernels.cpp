@@ -550,7 +550,7 @@ TEST(ContactTwoWay, SymmetricPassCatchesMasterNodesInsideSlaveFaces) {
 TEST(RigidMotionTest, RotationAboutAnAxisWithRampedSpeed) {
     // omega ramps 0 -> 2 rad/s over 1 s, then holds: angle(t) = t^2 (t <= 1), 1 + 2 (t - 1).
     const Vec3 c(1, 2, 0);
-    const RigidMotion m = RigidMotion::rotation(c, Vec3(0, 0, 2), TimeFunction({{0, 0}, {1, 2}}));
+    const RigidMotion m = RigidMotion::rotation(c, Vec3(0, 0, 2), Curve({{0, 0}, {1, 2}}));
     EXPECT_NEAR(m.angle(0.5), 0.25, 1e-15);
     EXPECT_NEAR(m.angle(2.0), 3.0, 1e-14);
     const Vec3 X(2, 2, 0.5);
@@ -562,10 +562,10 @@ TEST(RigidMotionTest, RotationAboutAnAxisWithRampedSpeed) {
         const Vec3 fd = (m.position(X, t + h) - m.position(X, t - h)) / (2 * h);
         EXPECT_NEAR((m.velocity(X, t) - fd).norm(), 0.0, 1e-8);
     }
-    const RigidMotion tr = RigidMotion::translation(Vec3(0, 0, -1), TimeFunction::constant(3.0));
+    const RigidMotion tr = RigidMotion::translation(Vec3(0, 0, -1), Curve::constant(3.0));
     EXPECT_NEAR((tr.position(X, 2.0) - (X - Vec3(0, 0, 6))).norm(), 0.0, 1e-14);
     EXPECT_THROW(RigidMotion::rotation(c, Vec3::Zero(), {}), InputError);
-    EXPECT_THROW(TimeFunction({{1, 0}, {1, 2}}), InputError);
+    EXPECT_THROW(Curve({{1, 0}, {0.5, 2}}), InputError);
 }
 
 // A rigid surface taken from a mesh part rotates with its motion, and the reaction on it (force
@@ -577,7 +577,7 @@ TEST(RigidSurfaceTest, RotatingRigidPartPushesNodesAndReportsTheReaction) {
     probe.translate(Vec3(0.099, -0.025, -0.025));  // its x-min face 1 mm inside the cube's x = 0.1 face
     m.append(probe);
     RigidSurface drum = RigidSurface::from_part(m, "drum", RigidMotion::rotation(Vec3::Zero(), Vec3::UnitZ(),
-                                                                                 TimeFunction::constant(1.0)),
+                                                                                 Curve::constant(1.0)),
                                                 0.02);
     EXPECT_EQ(drum.points.size(), 26u);
     ContactInterface ci("probe on drum", ContactSurface::from_part(m, "probe", kRubber), std::move(drum));

@@ -142,7 +142,7 @@ TEST(ExplicitInput, BadRequestsNameTheCulprit) {
     } catch (const InputError& e) {
         EXPECT_NE(std::string(e.what()).find("nothere"), std::string::npos);
     }
-    EXPECT_THROW(Curve({{0, 1}, {0, 2}}, "bad"), InputError);
+    EXPECT_THROW(Curve({{0, 1}, {0, 2}, {0, 3}}, "bad"), InputError);
     EXPECT_THROW(model.prescribe_velocity({0}, 4, 1.0), InputError);
 }
 
