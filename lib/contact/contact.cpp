@@ -1,6 +1,7 @@
 #include "contact/contact.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <set>
@@ -52,28 +53,23 @@ ContactInterface::ContactInterface(std::string name, ContactSurface slave, Conta
     validate_options();
     if (slave_->nodes.empty() || master_->segments.empty())
         throw InputError(fmt::format("contact '{}': the slave side has no nodes or the master side no faces", name_));
-    if (slave_->rigid || master_->rigid)
-        throw InputError(fmt::format("contact '{}': use the RigidSurface constructor for a rigid master", name_));
-    passes_.push_back(std::make_unique<Pass>(*slave_, *master_, false, opt_));
+    if (slave_->rigid)
+        throw InputError(fmt::format("contact '{}': the slave side '{}' is rigid; make the rigid part the master", name_,
+                                     slave_->name));
+    if (slave_->node_size.size() != slave_->nodes.size())
+        throw InputError(fmt::format("contact '{}': the slave surface '{}' has no node sizes (build it with "
+                                     "ContactSurface::from_part)",
+                                     name_, slave_->name));
+    passes_.push_back(std::make_unique<Pass>(*slave_, *master_, master_->rigid, opt_));
     if (opt_.two_way) {
+        if (master_->rigid)
+            throw InputError(fmt::format("contact '{}': two-way contact needs a deformable master (the rigid part "
+                                         "'{}' has no slave nodes)",
+                                         name_, master_->name));
         if (master_->nodes.empty() || slave_->segments.empty())
             throw InputError(fmt::format("contact '{}': two-way contact needs faces and nodes on both sides", name_));
         passes_.push_back(std::make_unique<Pass>(*master_, *slave_, false, opt_));
     }
-}
-
-ContactInterface::ContactInterface(std::string name, ContactSurface slave, RigidSurface master, ContactOptions o)
-    : name_(std::move(name)), opt_(o), slave_(std::make_unique<ContactSurface>(std::move(slave))),
-      rigid_(std::make_unique<RigidSurface>(std::move(master))) {
-    validate_options();
-    if (slave_->nodes.empty() || rigid_->surface.segments.empty())
-        throw InputError(fmt::format("contact '{}': the slave side has no nodes or the rigid master no faces", name_));
-    if (opt_.two_way)
-        throw InputError(fmt::format("contact '{}': two-way contact needs a deformable master (a rigid body's points "
-                                     "carry no mass)",
-                                     name_));
-    rigid_->surface.rigid = true;
-    passes_.push_back(std::make_unique<Pass>(*slave_, rigid_->surface, true, opt_));
 }
 
 void ContactInterface::validate_options() const {
@@ -99,7 +95,7 @@ void ContactInterface::check(std::span<const Vec3> x) const {
         return -1;
     };
     int n = bad(*slave_);
-    if (n < 0 && master_) n = bad(*master_);
+    if (n < 0) n = bad(*master_);
     if (n >= 0)
         throw InputError(fmt::format("contact '{}': node {} is out of range (the model has {} nodes)", name_, n, x.size()));
 }
@@ -107,7 +103,6 @@ void ContactInterface::check(std::span<const Vec3> x) const {
 void ContactInterface::evaluate(std::span<const Vec3> x, std::span<const Vec3> v, double t, double dt,
                                 std::span<Vec3> force) {
     if (passes_[0]->list.cycles() == 0) check(x);
-    if (rigid_) rigid_->state(t, rigid_x_, rigid_v_);
     stored_ = 0.0;
     f_master_.setZero();
     m_master_.setZero();
@@ -121,10 +116,10 @@ void ContactInterface::evaluate(std::span<const Vec3> x, std::span<const Vec3> v
         Pass& P = *passes_[p];
         const auto& snodes = P.slave->nodes;
         const auto& segs = P.master->segments;
-        std::span<const Vec3> xm = P.rigid ? std::span<const Vec3>(rigid_x_) : x;
-        std::span<const Vec3> vm = P.rigid ? std::span<const Vec3>(rigid_v_) : vs;
+        std::span<const Vec3> xm = x, vm = vs;
         for (std::size_t i = 0; i < snodes.size(); ++i) P.slave_x[i] = x[snodes[i]];
         const bool self = !P.rigid;  // a node never contacts a face it belongs to
+        const auto search0 = std::chrono::steady_clock::now();
         P.list.update(P.slave_x, xm, segs, P.depth, P.lateral, P.master_nodes, P.turn_factor, [&](int i, int s) {
             if (!self) return false;
             const auto& seg = segs[s];
@@ -132,6 +127,7 @@ void ContactInterface::evaluate(std::span<const Vec3> x, std::span<const Vec3> v
                 if (seg.n[k] == snodes[i]) return true;
             return false;
         });
+        search_s_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - search0).count();
 
         for (std::size_t i = 0; i < snodes.size(); ++i) {
             const int node = snodes[i];
@@ -173,6 +169,8 @@ void ContactInterface::evaluate(std::span<const Vec3> x, std::span<const Vec3> v
             Vec3 F = fn * bp.normal;        // on the slave node
             ContactPoint cp{node, best, static_cast<int>(p), xs, bp.point, bp.normal, bp.gap, fn, Vec3::Zero(), false};
             stored_ += 0.5 * k * bp.gap * bp.gap;
+            max_penetration_ = std::max(max_penetration_, -bp.gap);
+            max_penetration_fraction_ = std::max(max_penetration_fraction_, -bp.gap / P.slave->node_size[i]);
             // Velocity of the master point under the node (shape-function interpolation).
             Vec3 vmp = Vec3::Zero();
             for (int a = 0; a < seg.count; ++a) vmp += bp.shape[a] * vm[seg.n[a]];
@@ -204,7 +202,7 @@ void ContactInterface::evaluate(std::span<const Vec3> x, std::span<const Vec3> v
             points_.push_back(cp);
         }
     }
-    if (rigid_) {
+    if (master_->rigid) {
         rigid_work_ += 0.5 * (rigid_power_ + rigid_power) * dt;  // trapezoidal rule
         rigid_power_ = rigid_power;
     }

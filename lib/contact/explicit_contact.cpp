@@ -26,10 +26,6 @@ ContactInterface& add_contact(ExplicitModel& model, ContactInterface contact) {
     return static_cast<ContactProvider&>(p).contact();
 }
 
-void prescribe_rigid_motion(ExplicitModel& model, const std::vector<int>& nodes, RigidMotion motion) {
-    model.prescribe_motion(nodes, [m = std::move(motion)](const Vec3& X, double t) { return m.position(X, t); });
-}
-
 Resultant support_reaction(const ExplicitSolver& solver, const std::vector<int>& nodes, const Vec3& about) {
     return resultant(nodes, solver.state().f, solver.state().x, about);
 }

@@ -11,6 +11,7 @@
 #include <set>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <nlohmann/json.hpp>
 #include <Spectra/SymEigsSolver.h>
 
@@ -77,6 +78,12 @@ void ExplicitModel::finalize() {
                                                            rot ? d.second.second : std::vector<double>{}));
     }
     if (groups_.empty()) throw InputError("explicit model has no parts: add hex8, beams or point masses");
+    for (const auto& m : motions_)
+        if (!m.part.empty())
+            for (const auto& g : groups_)
+                if (g->part == m.part)
+                    throw InputError(fmt::format("part '{}' is rigid (add_rigid_part) and also has {} elements", m.part,
+                                                 g->kind()));
 }
 
 void ExplicitModel::fix(const std::vector<int>& nodes, Dofs dofs) {
@@ -97,11 +104,25 @@ void ExplicitModel::prescribe_displacement(const std::vector<int>& nodes, int do
     prescribed_.push_back({nodes, dof, value, std::move(curve), true});
 }
 
+void ExplicitModel::prescribe_motion(const std::vector<int>& nodes, RigidMotion motion) {
+    check_nodes(nodes, "prescribe_motion");
+    motions_.push_back({nodes, std::move(motion), {}, {}});
+}
+
 void ExplicitModel::prescribe_motion(const std::vector<int>& nodes,
                                      std::function<Vec3(const Vec3& X, double t)> position) {
     check_nodes(nodes, "prescribe_motion");
     if (!position) throw InputError("prescribe_motion: empty position function");
-    motions_.push_back({nodes, std::move(position)});
+    motions_.push_back({nodes, {}, std::move(position), {}});
+}
+
+void ExplicitModel::add_rigid_part(std::string_view part, RigidMotion motion) {
+    for (const auto& m : motions_)
+        if (m.part == part) throw InputError(fmt::format("add_rigid_part: part '{}' is already rigid", part));
+    std::set<int> nodes;
+    for (int b : mesh_.blocks_of_part(part))  // throws for an unknown part
+        for (int node : mesh_.blocks[b].connectivity) nodes.insert(node);
+    motions_.push_back({std::vector<int>(nodes.begin(), nodes.end()), std::move(motion), {}, std::string(part)});
 }
 
 ForceProvider& ExplicitModel::add_force_provider(std::unique_ptr<ForceProvider> provider) {
@@ -162,6 +183,7 @@ std::string RunSummary::text() const {
                      threads);
     s += fmt::format("  mass {:.6g} kg, added by mass scaling {:.4g} kg ({:.3g} %)\n", mass, added_mass,
                      100.0 * added_mass_fraction);
+    if (!rigid_parts.empty()) s += fmt::format("  rigid parts: {}\n", fmt::join(rigid_parts, ", "));
     s += fmt::format("  controlling element: part '{}' block {} {} element {}, critical dt {:.4g} s (Table 2-1)\n",
                      controlling_part, controlling_block, controlling_kind, controlling_element, controlling_dt);
     if (stability_factor < 1.0)
@@ -184,6 +206,7 @@ nlohmann::json RunSummary::to_json() const {
             {"nodes", nodes},
             {"rotational_nodes", rotational_nodes},
             {"elements", elements},
+            {"rigid_parts", rigid_parts},
             {"threads", threads},
             {"steps", steps},
             {"end_time_s", end_time},
@@ -325,13 +348,29 @@ void ExplicitSolver::initialize() {
                 const double nan = std::numeric_limits<double>::quiet_NaN();
                 target_.push_back({nan, nan, nan});
             }
-    for (const auto& mo : model_.motions())
-        for (int node : mo.nodes)
+    // A node follows one motion at most; the motion overrides fix() on its translations.
+    std::vector<int> motion_of(n, -1);
+    for (int k = 0; k < static_cast<int>(model_.motions().size()); ++k) {
+        const auto& mo = model_.motions()[k];
+        for (int node : mo.nodes) {
+            if (motion_of[node] >= 0 && motion_of[node] != k) {
+                auto what = [&](int m) {
+                    const auto& p = model_.motions()[m].part;
+                    return p.empty() ? std::string("a prescribed motion") : fmt::format("rigid part '{}'", p);
+                };
+                throw InputError(fmt::format("node {} follows two motions: {} and {}", node, what(motion_of[node]),
+                                             what(k)));
+            }
+            motion_of[node] = k;
+            fixed_[node] &= ~7u;
             if (target_index_[node] < 0) {
                 target_index_[node] = static_cast<int>(target_.size());
                 const double nan = std::numeric_limits<double>::quiet_NaN();
                 target_.push_back({nan, nan, nan});
             }
+        }
+        if (!mo.part.empty()) summary_.rigid_parts.push_back(mo.part);
+    }
     for (const auto& l : model_.loads()) {
         has_loads_ = true;
         if (l.moment)
@@ -720,11 +759,21 @@ RunSummary ExplicitSolver::run() {
             for (auto& m : mprov_) m.setZero();
             for (auto& p : model_.force_providers()) p->add_forces(t_, s_, fprov_, mprov_);
         }
-        for (const auto& mo : model_.motions())
+        // Prescribed motions: the velocity over the coming step that lands on the motion's position.
+        for (const auto& mo : model_.motions()) {
+            if (mo.position) {
+                for (int node : mo.nodes) {
+                    const Vec3 v = (mo.position(s_.X[node], t_ + dt_half) - s_.x[node]) / dt_half;
+                    for (int d = 0; d < 3; ++d) target_[target_index_[node]][d] = v[d];
+                }
+                continue;
+            }
+            const RigidPose pose = mo.rigid.pose(t_ + dt_half);  // once per motion and step
             for (int node : mo.nodes) {
-                const Vec3 v = (mo.position(s_.X[node], t_ + dt_half) - s_.x[node]) / dt_half;
+                const Vec3 v = (pose.position(s_.X[node]) - s_.x[node]) / dt_half;
                 for (int d = 0; d < 3; ++d) target_[target_index_[node]][d] = v[d];
             }
+        }
         // Prescribed velocities over the coming half step.
         for (const auto& p : model_.prescribed()) {
             const double tn = t_ + dt_half;
@@ -746,7 +795,17 @@ RunSummary ExplicitSolver::run() {
             const auto [i0, i1] = par::chunk_range(c, n);
             for (int i = i0; i < i1; ++i) {
                 const double m = s_.mass[i];
-                if (!(m > 0.0)) continue;  // a node no element uses
+                if (!(m > 0.0)) {  // a node no element uses: it moves only when prescribed (rigid parts)
+                    const int ti = target_index_[i];
+                    if (ti >= 0) {
+                        Vec3 vp = Vec3::Zero();
+                        for (int d = 0; d < 3; ++d)
+                            if (!((fixed_[i] >> d) & 1u) && !std::isnan(target_[ti][d])) vp[d] = target_[ti][d];
+                        s_.v[i] = vp;
+                        s_.x[i] += dt_half * vp;
+                    }
+                    continue;
+                }
                 const Vec3 vm = s_.v[i];
                 const Vec3 F = providers ? Vec3(fext_[i] + fprov_[i] - s_.f[i]) : Vec3(fext_[i] - s_.f[i]);
                 const double a = alpha_[i] * dtavg * 0.5;

@@ -48,6 +48,7 @@
 #include "explicit/curve.hpp"
 #include "explicit/element_group.hpp"
 #include "explicit/groups.hpp"
+#include "explicit/rigid_motion.hpp"
 #include "io/vtu.hpp"
 #include "mesh/mesh.hpp"
 
@@ -84,9 +85,21 @@ public:
     void fix(const std::vector<int>& nodes, Dofs dofs = Dofs::all());
     /// Prescribed velocity v(t) = value * curve(t) along global dof (0..2 translations, 3..5 rotations).
     void prescribe_velocity(const std::vector<int>& nodes, int dof, double value, Curve curve = {});
-    /// Nodes that follow x(t) = position(X, t) exactly (all three translations), e.g. finger root
-    /// nodes tied to a rotating rigid drum. position(X, 0) should be X.
+    /// Nodes that follow a rigid motion exactly (all three translations; rigid_motion.hpp), e.g. the
+    /// finger root nodes tied to the turning drum. A node may follow one motion only, and not be
+    /// fixed as well (InputError).
+    void prescribe_motion(const std::vector<int>& nodes, RigidMotion motion);
+    /// Nodes that follow x(t) = position(X, t) exactly (any motion; position(X, 0) should be X).
     void prescribe_motion(const std::vector<int>& nodes, std::function<Vec3(const Vec3& X, double t)> position);
+    /// A rigid part (LS-DYNA *MAT_RIGID with a prescribed motion): every node of the blocks of `part`
+    /// (solids, shells, any shape) follows `motion` exactly. The part gets no element group: no
+    /// element work, no mass (a prescribed body's inertia does not act on the rest). Its faces can be
+    /// a contact master (contact::ContactSurface::rigid_part; the interface reports the reaction on
+    /// it), and it is written to the VTU output with the rest (von Mises 0). Nodes it shares with a
+    /// deformable part are tied to it, and the work of their reactions is external work. Throws
+    /// InputError when the part does not exist, is already rigid, or (when the solver starts) also
+    /// has element groups.
+    void add_rigid_part(std::string_view part, RigidMotion motion);
     /// Contact and other state-dependent forces (see ForceProvider); returns a reference to it.
     ForceProvider& add_force_provider(std::unique_ptr<ForceProvider> provider);
     /// Prescribed displacement u(t) = value * curve(t) along dof (measured from the reference position;
@@ -124,9 +137,12 @@ public:
         Curve curve;
         bool moment;
     };
+    /// A prescribed motion of nodes: the rigid motion, or (when set) the general `position`.
     struct Motion {
         std::vector<int> nodes;
+        RigidMotion rigid;
         std::function<Vec3(const Vec3&, double)> position;
+        std::string part;  // the rigid part's name (empty: nodes tied by prescribe_motion)
     };
     const std::vector<Motion>& motions() const { return motions_; }
     std::vector<std::unique_ptr<ForceProvider>>& force_providers() { return providers_; }
@@ -240,6 +256,7 @@ struct RunSummary {
     int nodes = 0, elements = 0, rotational_nodes = 0, threads = 1;
     long steps = 0;
     double end_time = 0, first_dt = 0, min_dt = 0, max_dt = 0;
+    std::vector<std::string> rigid_parts;
     std::string controlling_part, controlling_kind;
     int controlling_block = -1, controlling_element = -1;
     double controlling_dt = 0;   // its critical step (before the 0.9 and the stability factor)

@@ -114,7 +114,7 @@ Result run_case(const Case& c, double finger_h, const std::filesystem::path& out
     // ROTFINGER_PERTURB=<eps> scales the drum speed by (1 + eps): a round-off-sized perturbation shows
     // which outputs are robust (README: the raw stress maxima are not).
     const double perturb = std::getenv("ROTFINGER_PERTURB") ? std::atof(std::getenv("ROTFINGER_PERTURB")) : 0.0;
-    prescribe_rigid_motion(model, finger.node_set("root"),
+    model.prescribe_motion(finger.node_set("root"),
                            RigidMotion::rotation(Vec3::Zero(), Vec3::UnitZ(), Curve::constant(kOmega * (1 + perturb))));
     ContactOptions co;
     co.friction = {0.6, 0.6, 0.0};  // Table 3-6
@@ -134,8 +134,9 @@ Result run_case(const Case& c, double finger_h, const std::filesystem::path& out
         ci = &add_contact(model, ContactInterface("finger on object", ContactSurface::from_part(mesh, "finger", rubber),
                                                   ContactSurface::from_part(mesh, "object", al), co));
     } else {
+        model.add_rigid_part("object", RigidMotion::fixed());
         ci = &add_contact(model, ContactInterface("finger on object", ContactSurface::from_part(mesh, "finger", rubber),
-                                                  RigidSurface::from_part(mesh, "object", RigidMotion::fixed(), 0.02), co));
+                                                  ContactSurface::rigid_part(mesh, "object", 0.02), co));
     }
     ExplicitOptions opt;
     opt.end_time = c.end_time;
