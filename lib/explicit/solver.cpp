@@ -141,9 +141,52 @@ void ExplicitModel::add_nodal_moment(const std::vector<int>& nodes, const Vec3& 
     loads_.push_back({nodes, moment, std::move(curve), true});
 }
 
-void ExplicitModel::set_gravity(const Vec3& g, double t_on) {
+void ExplicitModel::set_gravity(const Vec3& g, double t_on) { set_gravity(g, Curve::step(t_on)); }
+
+void ExplicitModel::set_gravity(const Vec3& g, Curve curve) {
+    if (!g.allFinite()) throw InputError("set_gravity: the acceleration is not finite");
     gravity_ = g;
-    gravity_on_ = t_on;
+    gravity_curve_ = std::move(curve);
+}
+
+namespace {
+// The global axis (0, 1, 2) of an axis-aligned normal; InputError otherwise.
+int symmetry_axis(const Vec3& normal) {
+    const double len = normal.norm();
+    if (!(len > 0.0) || !normal.allFinite())
+        throw InputError("symmetry plane: the normal has zero length or is not finite");
+    int axis = 0;
+    normal.cwiseAbs().maxCoeff(&axis);
+    if (std::abs(normal[axis]) < len * (1.0 - 1e-12))
+        throw InputError(fmt::format("symmetry plane: normal ({}, {}, {}) is not along a global axis; only planes "
+                                     "normal to x, y or z can be expressed (fixed global DOFs)",
+                                     normal.x(), normal.y(), normal.z()));
+    return axis;
+}
+}  // namespace
+
+void ExplicitModel::add_symmetry_plane(const Vec3& normal, const std::vector<int>& nodes) {
+    const int a = symmetry_axis(normal);
+    check_nodes(nodes, "symmetry plane");
+    // The normal translation, and the rotations about the two in-plane axes.
+    const unsigned mask = (1u << a) | (1u << (3 + (a + 1) % 3)) | (1u << (3 + (a + 2) % 3));
+    for (int n : nodes) fixed_[n] |= mask;
+}
+
+std::vector<int> ExplicitModel::add_symmetry_plane(const Vec3& normal, const Vec3& point, double tolerance) {
+    const int a = symmetry_axis(normal);
+    if (tolerance <= 0.0) {
+        Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+        for (const Vec3& X : mesh_.nodes) lo = lo.cwiseMin(X), hi = hi.cwiseMax(X);
+        tolerance = 1e-9 * (hi - lo).norm();
+    }
+    const std::vector<int> nodes =
+        mesh_.select_nodes([&](const Vec3& X) { return std::abs(X[a] - point[a]) <= tolerance; });
+    if (nodes.empty())
+        throw InputError(fmt::format("symmetry plane {} = {}: no node within {:.3g} of it", "xyz"[a], point[a],
+                                     tolerance));
+    add_symmetry_plane(normal, nodes);
+    return nodes;
 }
 
 void ExplicitModel::set_mass_damping(std::string_view part, double alpha) {
@@ -606,8 +649,13 @@ void ExplicitSolver::external_forces(double t) {
                 fext_[node] += v;
         }
     }
-    if (model_.gravity().squaredNorm() > 0 && t >= model_.gravity_on())
-        for (int i = 0; i < s_.node_count(); ++i) fext_[i] += s_.mass[i] * model_.gravity();
+    if (model_.gravity().squaredNorm() > 0) {
+        const double c = model_.gravity_curve()(t);
+        if (c != 0.0) {
+            const Vec3 g = model_.gravity() * c;
+            for (int i = 0; i < s_.node_count(); ++i) fext_[i] += s_.mass[i] * g;
+        }
+    }
 }
 
 void ExplicitSolver::unstable(const std::string& why) {

@@ -83,6 +83,16 @@ public:
 
     // --- constraints and loads ---
     void fix(const std::vector<int>& nodes, Dofs dofs = Dofs::all());
+    /// Symmetry plane of a half (or quarter) model: the nodes within `tolerance` of the plane through
+    /// `point` with normal `normal` get the normal translation fixed and, when they carry rotations
+    /// (beams, shells), the two rotations about the in-plane axes (the rotation about the normal
+    /// stays free). Returns those nodes; InputError when there are none. tolerance <= 0: 1e-9 x the
+    /// mesh's bounding-box diagonal. Only planes whose normal is a global axis (+-x, +-y, +-z) can be
+    /// expressed: the constraint is a fixed global DOF, and a skew plane would need a local frame per
+    /// node, which the solver does not have; any other normal is refused with an InputError.
+    std::vector<int> add_symmetry_plane(const Vec3& normal, const Vec3& point, double tolerance = 0.0);
+    /// The same on the given nodes (e.g. a node set), without looking at their coordinates.
+    void add_symmetry_plane(const Vec3& normal, const std::vector<int>& nodes);
     /// Prescribed velocity v(t) = value * curve(t) along global dof (0..2 translations, 3..5 rotations).
     void prescribe_velocity(const std::vector<int>& nodes, int dof, double value, Curve curve = {});
     /// Nodes that follow a rigid motion exactly (all three translations; rigid_motion.hpp), e.g. the
@@ -111,6 +121,8 @@ public:
     void add_nodal_moment(const std::vector<int>& nodes, const Vec3& moment, Curve curve = {});
     /// Gravity acceleration g switched on at t_on (body force m g on every node's mass).
     void set_gravity(const Vec3& g, double t_on = 0.0);
+    /// Gravity g x curve(t), e.g. Curve::step(t_on) or a ramp (body force m g curve(t)).
+    void set_gravity(const Vec3& g, Curve curve);
     /// Mass-proportional damping alpha [1/s] of Eq 2-39 on the nodes of `part` (force -alpha m v,
     /// also on rotations), like *DAMPING_PART_MASS. A node shared by parts takes the largest alpha.
     void set_mass_damping(std::string_view part, double alpha);
@@ -154,7 +166,7 @@ public:
     const std::map<std::string, double, std::less<>>& mass_damping() const { return damping_; }
     double global_mass_damping() const { return global_alpha_; }
     const Vec3& gravity() const { return gravity_; }
-    double gravity_on() const { return gravity_on_; }
+    const Curve& gravity_curve() const { return gravity_curve_; }
     const std::vector<Vec3>& initial_velocity() const { return v0_; }
     const std::map<int, Vec3>& initial_angular_velocity() const { return w0_; }
 
@@ -173,7 +185,7 @@ private:
     std::map<std::string, double, std::less<>> damping_;
     double global_alpha_ = 0.0;
     Vec3 gravity_ = Vec3::Zero();
-    double gravity_on_ = 0.0;
+    Curve gravity_curve_;
     std::vector<Vec3> v0_;
     std::map<int, Vec3> w0_;
     bool finalized_ = false;
