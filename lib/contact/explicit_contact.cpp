@@ -21,6 +21,10 @@ double ContactProvider::stable_time_step(const NodalState&) const {
     return w2_ > 0.0 ? 2.0 / std::sqrt(w2_) : std::numeric_limits<double>::infinity();
 }
 
+ContactReport ContactProvider::contact_report() const {
+    return {true, c_.max_penetration(), c_.max_penetration_fraction(), c_.stored_energy(), c_.dissipated_energy()};
+}
+
 ContactInterface& add_contact(ExplicitModel& model, ContactInterface contact) {
     auto& p = model.add_force_provider(std::make_unique<ContactProvider>(std::move(contact)));
     return static_cast<ContactProvider&>(p).contact();

@@ -37,6 +37,8 @@ public:
     void add_forces(double t, const NodalState& s, std::vector<Vec3>& force, std::vector<Vec3>& moment) override;
     /// 2 / omega of the penalty springs (ContactInterface::stability_frequency_squared).
     double stable_time_step(const NodalState& s) const override;
+    double search_seconds() const override { return c_.search_seconds(); }
+    ContactReport contact_report() const override;
     ContactInterface& contact() { return c_; }
     const ContactInterface& contact() const { return c_; }
 

@@ -99,6 +99,14 @@ public:
     int block = -1;        // block index in the mesh
 };
 
+/// What a contact force provider reports for the run summary (ForceProvider::contact_report).
+struct ContactReport {
+    bool is_contact = false;              // false: not a contact (nothing to report)
+    double max_penetration = 0.0;         // deepest penetration over the run [m]
+    double max_penetration_fraction = 0.0;  // deepest as a fraction of the slave's local element size
+    double stored_energy = 0.0, dissipated_energy = 0.0;  // contact energy = stored + dissipated [J]
+};
+
 /// State-dependent forces from outside the element groups (contact, couplings): the solver calls
 /// add_forces every cycle after the internal forces and counts their work as the "contact" energy
 /// of the balance (energy taken out of the structure: penalty springs + friction). Implementations
@@ -114,6 +122,11 @@ public:
     virtual void add_forces(double t, const NodalState& s, std::vector<Vec3>& force, std::vector<Vec3>& moment) = 0;
     /// A limit on the step (e.g. penalty springs); infinity when it imposes none.
     virtual double stable_time_step(const NodalState& s) const { return std::numeric_limits<double>::infinity(); }
+    /// Of the wall time spent in add_forces so far, the part spent searching (contact: candidate
+    /// lists); the solver's timing table reports the rest as contact forces.
+    virtual double search_seconds() const { return 0.0; }
+    /// Penetration and energy statistics for the run summary (contact interfaces).
+    virtual ContactReport contact_report() const { return {}; }
 };
 
 }  // namespace fem

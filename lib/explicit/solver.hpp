@@ -229,6 +229,10 @@ struct ExplicitOptions {
     // Deformed states for ParaView (VTU files listed in a PVD) every vtu_interval.
     std::filesystem::path pvd_path;
     double vtu_interval = 0.0;
+    // When the observer runs: < 0 at every history sample (the default); 0 every cycle; > 0 every
+    // observer_interval [s] (the first cycle at or after each), whatever the history interval. So an
+    // observer can watch every cycle without the history storing every cycle.
+    double observer_interval = -1.0;
     std::string name = "explicit";   // run name in the summary
     bool print_summary = true;       // to stdout at the end
     bool progress = true;            // an updating line on stderr, only when it is a terminal
@@ -262,6 +266,29 @@ struct EnergySummary {
     double relative_error() const { return reference > 0 ? max_abs_balance_error / reference : 0.0; }
 };
 
+/// Where the wall time of a run went (LS-DYNA's timing table at the end of d3hsp) [s]. Measured
+/// per cycle around each phase (a few clock reads per cycle, never per element or node):
+/// elements = internal forces of every group (with the element time steps); contact_search and
+/// contact_forces = the force providers (their own search time, ForceProvider::search_seconds, and
+/// the rest of add_forces); constraints = prescribed motions, rigid parts and prescribed velocities
+/// (their target velocities); update = the central-difference update of velocities and positions
+/// with the energy sums; output = histories, observer, VTU, restart dumps and the final HDF5;
+/// other = the rest of the wall time (loads and gravity, the step choice, progress line).
+struct TimingSummary {
+    double elements = 0, contact_search = 0, contact_forces = 0, constraints = 0, update = 0, output = 0, other = 0;
+    double timer_overhead = 0;  // estimated cost of the clock reads themselves (count x measured cost of one)
+    long clock_reads = 0;
+};
+
+/// Per contact interface (ForceProvider::contact_report), over the run.
+struct InterfaceSummary {
+    std::string name;
+    double max_penetration = 0;           // [m]
+    double max_penetration_fraction = 0;  // of the slave's local element size
+    double energy = 0, stored_energy = 0, dissipated_energy = 0;  // contact energy = stored + dissipated [J]
+    double search_s = 0, forces_s = 0;    // wall time
+};
+
 /// The run summary (LS-DYNA d3hsp/glstat style); to_json() feeds Study::record_run.
 struct RunSummary {
     std::string name;
@@ -276,6 +303,8 @@ struct RunSummary {
     double mass = 0, added_mass = 0, added_mass_fraction = 0;
     EnergySummary energy;
     double wall_s = 0, element_cycles_per_s = 0;
+    TimingSummary timing;
+    std::vector<InterfaceSummary> interfaces;
     std::string text() const;
     nlohmann::json to_json() const;
 };
@@ -287,8 +316,9 @@ public:
     /// Runs to end_time. Throws SolverError on instability (NaN, energy growth, inverted element),
     /// InputError on a fixed step above critical.
     RunSummary run();
-    /// Called at every history sample (after the sample is stored), e.g. to probe the state or to
-    /// end the run early with request_stop().
+    /// Called at every history sample (after the sample is stored), or on its own schedule
+    /// (ExplicitOptions::observer_interval), e.g. to probe the state or to end the run early with
+    /// request_stop(). Also at the start and at the end state.
     std::function<void(const ExplicitSolver&)> observer;
     /// Ends the run after the current cycle (like LS-DYNA's sense switch "sw1"): for an observer
     /// that knows the event of interest is over, e.g. contact has ended. The summary's end_time is
@@ -307,12 +337,18 @@ public:
     double stability_factor() const { return stability_factor_; }
     /// omega_max of the solid groups measured at the start (0 when not measured).
     double measured_omega_max() const { return omega_max_; }
+    /// Largest element von Mises stress of part `part` at the last force evaluation (0 for a part
+    /// without groups), for observers that watch every cycle; History::max_von_mises holds the
+    /// maxima between history samples.
+    double max_von_mises(std::string_view part) const;
 
 private:
     void initialize();
     void compute_forces(bool compute_dt);
     void external_forces(double t);
     void record(bool force);
+    void notify_observer(bool force);
+    double choose_dt() const;
     void write_vtu(double t);
     [[noreturn]] void unstable(const std::string& why);
     std::string element_name(int group, int element) const;
@@ -350,6 +386,14 @@ private:
     std::vector<int> target_index_;              // per node: index into target_, or -1
     long element_cycles_ = 0;
     mutable bool stop_requested_ = false;  // set by request_stop() from the observer
+    // Loop state carried between cycles (and through restarts).
+    double dt_half_ = 0.0, dt_prev_ = 0.0;  // the step to come and the last one
+    double ctrl_min_ = 0.0;                 // smallest critical step so far, and its element
+    int ctrl_group_ = -1, ctrl_element_ = -1;
+    double next_observer_ = 0.0, last_observer_ = -1.0;
+    std::vector<double> group_vm_;          // per group: largest von Mises at the last force evaluation
+    TimingSummary timing_;
+    std::vector<double> provider_s_;        // per provider: wall time in add_forces
 };
 
 }  // namespace fem

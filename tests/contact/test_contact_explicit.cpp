@@ -30,6 +30,8 @@
 //  - Root nodes tied to a rotating rigid body follow their RigidMotion exactly (to round-off).
 #include <gtest/gtest.h>
 
+#include <nlohmann/json.hpp>
+
 #include <cmath>
 #include <cstdlib>
 #include <numbers>
@@ -442,4 +444,16 @@ TEST(ContactExplicit, MovingRigidPartPushesABlockAndReportsTheReaction) {
     EXPECT_GT(c.max_penetration(), 0.0);
     EXPECT_NEAR(c.max_penetration_fraction(), c.max_penetration() / 0.01, 1e-12);
     EXPECT_LT(sum.energy.relative_error(), 0.02);
+    // The run summary reports the interface: penetration, energy, its share of the time.
+    ASSERT_EQ(sum.interfaces.size(), 1u);
+    EXPECT_EQ(sum.interfaces[0].name, "block on pallet");
+    EXPECT_EQ(sum.interfaces[0].max_penetration, c.max_penetration());
+    EXPECT_EQ(sum.interfaces[0].max_penetration_fraction, c.max_penetration_fraction());
+    EXPECT_EQ(sum.interfaces[0].energy, c.energy());
+    EXPECT_GT(sum.timing.contact_search, 0.0);
+    EXPECT_GT(sum.timing.contact_forces, 0.0);
+    EXPECT_NEAR(sum.interfaces[0].search_s + sum.interfaces[0].forces_s,
+                sum.timing.contact_search + sum.timing.contact_forces, 1e-12);
+    EXPECT_NE(sum.text().find("contact 'block on pallet': max penetration"), std::string::npos);
+    EXPECT_EQ(sum.to_json()["contact_interfaces"][0]["name"], "block on pallet");
 }
