@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 
 #include "core/error.hpp"
+#include "io/hdf5.hpp"
 
 namespace fem::contact {
 
@@ -205,6 +206,79 @@ void ContactInterface::evaluate(std::span<const Vec3> x, std::span<const Vec3> v
     if (master_->rigid) {
         rigid_work_ += 0.5 * (rigid_power_ + rigid_power) * dt;  // trapezoidal rule
         rigid_power_ = rigid_power;
+    }
+}
+
+void ContactInterface::save_state(io::H5Writer& w, const std::string& prefix) const {
+    w.write(prefix + "scalars", std::vector<double>{stored_, dissipated_, rigid_work_, rigid_power_, max_penetration_,
+                                                    max_penetration_fraction_});
+    Eigen::MatrixXd fm(2, 3);
+    fm.row(0) = f_master_.transpose();
+    fm.row(1) = m_master_.transpose();
+    w.write(prefix + "master_resultant", fm);
+    for (std::size_t p = 0; p < passes_.size(); ++p) {
+        const Pass& P = *passes_[p];
+        const std::string pp = prefix + "pass" + std::to_string(p) + "/";
+        P.list.save_state(w, pp + "search/");
+        Eigen::MatrixXd force(P.history.size(), 3);
+        std::vector<long long> segment(P.history.size());
+        for (std::size_t i = 0; i < P.history.size(); ++i) {
+            force.row(i) = P.history[i].force.transpose();
+            segment[i] = P.history[i].segment;
+        }
+        w.write(pp + "friction_force", force);
+        w.write_ints(pp + "segment", segment);
+    }
+    // The last evaluation's contact points (outputs: an observer reads them before the next cycle).
+    Eigen::MatrixXd pts(points_.size(), 17);
+    for (std::size_t i = 0; i < points_.size(); ++i) {
+        const ContactPoint& c = points_[i];
+        pts.row(i) << c.node, c.segment, c.pass, c.position.transpose(), c.point.transpose(), c.normal.transpose(), c.gap,
+            c.normal_force, c.tangential_force.transpose(), c.slipping ? 1.0 : 0.0;
+    }
+    w.write(prefix + "points", pts);
+}
+
+void ContactInterface::restore_state(const io::H5Reader& r, const std::string& prefix) {
+    const auto bad = [&](const std::string& what) {
+        return InputError(fmt::format("restart file '{}': contact '{}': {}", r.path().string(), name_, what));
+    };
+    const auto sc = r.read(prefix + "scalars");
+    if (sc.size() != 6) throw bad("bad " + prefix + "scalars");
+    stored_ = sc[0], dissipated_ = sc[1], rigid_work_ = sc[2], rigid_power_ = sc[3];
+    max_penetration_ = sc[4], max_penetration_fraction_ = sc[5];
+    const Eigen::MatrixXd fm = r.read_matrix(prefix + "master_resultant");
+    f_master_ = fm.row(0).transpose();
+    m_master_ = fm.row(1).transpose();
+    for (std::size_t p = 0; p < passes_.size(); ++p) {
+        Pass& P = *passes_[p];
+        const std::string pp = prefix + "pass" + std::to_string(p) + "/";
+        if (!r.has(pp + "segment")) throw bad(fmt::format("the file has no contact pass {} (one-way vs two-way?)", p));
+        const Eigen::MatrixXd force = r.read_matrix(pp + "friction_force");
+        const auto segment = r.read_ints(pp + "segment");
+        if (segment.size() != P.history.size())
+            throw bad(fmt::format("pass {} has {} slave nodes in the file, {} here", p, segment.size(), P.history.size()));
+        for (std::size_t i = 0; i < P.history.size(); ++i) {
+            P.history[i].force = force.row(i).transpose();
+            P.history[i].segment = static_cast<int>(segment[i]);
+            if (P.history[i].segment >= static_cast<int>(P.master->segments.size()))
+                throw bad(fmt::format("pass {}: segment {} of the file is not a master segment here", p, segment[i]));
+        }
+        P.list.restore_state(r, pp + "search/");
+    }
+    if (r.has(prefix + "pass" + std::to_string(passes_.size()) + "/segment"))
+        throw bad("the file has more contact passes than this interface (two-way vs one-way?)");
+    const Eigen::MatrixXd pts = r.read_matrix(prefix + "points");
+    points_.clear();
+    for (Eigen::Index i = 0; i < pts.rows(); ++i) {
+        const auto row = pts.row(i);
+        ContactPoint c;
+        c.node = static_cast<int>(row(0)), c.segment = static_cast<int>(row(1)), c.pass = static_cast<int>(row(2));
+        c.position = row.segment<3>(3).transpose(), c.point = row.segment<3>(6).transpose();
+        c.normal = row.segment<3>(9).transpose(), c.gap = row(12), c.normal_force = row(13);
+        c.tangential_force = row.segment<3>(14).transpose();
+        c.slipping = row(16) != 0.0;
+        points_.push_back(c);
     }
 }
 

@@ -107,6 +107,12 @@ public:
     /// Search statistics: candidate-list rebuilds and cycles of pass 0.
     long rebuilds() const;
     long cycles() const;
+    /// Restart: everything a later evaluate depends on (per pass the candidate lists, counters and
+    /// rebuild positions, each slave node's friction spring force and segment), the energies and
+    /// statistics, and the last evaluation's outputs, under the HDF5 group `prefix`. restore_state
+    /// throws InputError when the file's surfaces differ in size from this interface's.
+    void save_state(io::H5Writer& w, const std::string& prefix) const;
+    void restore_state(const io::H5Reader& r, const std::string& prefix);
 
 private:
     struct Pass;

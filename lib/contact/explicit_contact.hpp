@@ -39,6 +39,8 @@ public:
     double stable_time_step(const NodalState& s) const override;
     double search_seconds() const override { return c_.search_seconds(); }
     ContactReport contact_report() const override;
+    void save_state(io::H5Writer& w, const std::string& prefix) const override;
+    void restore_state(const io::H5Reader& r, const std::string& prefix) override;
     ContactInterface& contact() { return c_; }
     const ContactInterface& contact() const { return c_; }
 

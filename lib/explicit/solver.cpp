@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -325,8 +326,13 @@ ExplicitSolver::ExplicitSolver(ExplicitModel& model, ExplicitOptions options)
     if (!(opt_.dt_scale > 0.0 && opt_.dt_scale <= 1.0))
         throw InputError(fmt::format("explicit run '{}': dt_scale {} must be in (0, 1]", opt_.name, opt_.dt_scale));
     if (opt_.dt_interval < 1) throw InputError("dt_interval must be >= 1");
-    if (opt_.fixed_dt < 0 || opt_.mass_scaling_dt < 0 || opt_.history_interval < 0 || opt_.vtu_interval < 0)
+    if (opt_.fixed_dt < 0 || opt_.mass_scaling_dt < 0 || opt_.history_interval < 0 || opt_.vtu_interval < 0 ||
+        opt_.restart_interval < 0)
         throw InputError(fmt::format("explicit run '{}': negative fixed_dt, mass_scaling_dt or interval", opt_.name));
+    if ((opt_.restart_interval > 0 || !opt_.restart_times.empty()) && opt_.restart_dir.empty())
+        throw InputError(fmt::format("explicit run '{}': restart dumps asked for (restart_times or restart_interval) "
+                                     "but no restart_dir",
+                                     opt_.name));
     initialize();
 }
 
@@ -489,9 +495,25 @@ void ExplicitSolver::initialize() {
     }
     if (!opt_.pvd_path.empty()) pvd_ = std::make_unique<io::PvdSeries>(opt_.pvd_path);
 
-    // Forces and critical step at t = 0.
     t_ = 0.0;
     step_ = 0;
+    if (!opt_.restart_from.empty()) {
+        restore(opt_.restart_from);
+    } else {
+        start_fresh(solid_table_dt);
+    }
+    // Restart dumps still to come.
+    restart_times_.clear();
+    for (double t : opt_.restart_times)
+        if (t > t_) restart_times_.push_back(t);
+    std::sort(restart_times_.begin(), restart_times_.end());
+    next_restart_ = t_ + opt_.restart_interval;
+}
+
+void ExplicitSolver::start_fresh(double solid_table_dt) {
+    const int n = s_.node_count(), nr = s_.rotational_count();
+    auto& groups = model_.groups();
+    // Forces and critical step at t = 0.
     // One stability factor for all solid groups (hexahedra and tetrahedra alike): the measured
     // omega_max is that of the assembled solid model (shared nodes couple the groups' frequencies, so
     // only the assembled measurement is exact; per-group measurements are bounds only with each
@@ -791,6 +813,338 @@ void ExplicitSolver::write_vtu(double t) {
     pvd_->add(t, mesh, data, s_.x);
 }
 
+// ===================================================================================================
+// Restart (ExplicitOptions::restart_*): the complete state a later cycle depends on, to HDF5 and back
+// ===================================================================================================
+
+namespace {
+constexpr const char* kRestartFormat = "fem explicit restart 1";
+
+std::string safe_file_name(std::string_view name) {
+    std::string s(name);
+    for (char& c : s)
+        if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-' && c != '_' && c != '.') c = '_';
+    return s.empty() ? std::string("explicit") : s;
+}
+
+Eigen::MatrixXd vec3_rows(const std::vector<Vec3>& v) {
+    Eigen::MatrixXd m(v.size(), 3);
+    for (std::size_t i = 0; i < v.size(); ++i) m.row(i) = v[i].transpose();
+    return m;
+}
+
+std::string joined(const std::vector<std::string>& items) {
+    std::string s;
+    for (std::size_t i = 0; i < items.size(); ++i) s += (i ? "\n" : "") + items[i];
+    return s;
+}
+
+std::vector<std::string> split_lines(const std::string& s) {
+    std::vector<std::string> out;
+    if (s.empty()) return out;
+    std::size_t a = 0;
+    while (true) {
+        const std::size_t b = s.find('\n', a);
+        out.push_back(s.substr(a, b == std::string::npos ? std::string::npos : b - a));
+        if (b == std::string::npos) break;
+        a = b + 1;
+    }
+    return out;
+}
+
+// One line per group: what must match between the dumping and the restarting model.
+std::vector<std::string> group_signature(const ExplicitModel& model) {
+    std::vector<std::string> g;
+    for (const auto& grp : model.groups())
+        g.push_back(fmt::format("part '{}' block {} {} with {} elements", grp->part, grp->block, grp->kind(), grp->size()));
+    return g;
+}
+
+std::vector<std::string> provider_names(ExplicitModel& model) {
+    std::vector<std::string> p;
+    for (const auto& fp : model.force_providers()) p.push_back(fp->name());
+    return p;
+}
+}  // namespace
+
+std::filesystem::path ExplicitSolver::latest_restart(const std::filesystem::path& dir, std::string_view name) {
+    const std::string prefix = safe_file_name(name) + "-restart-";
+    std::filesystem::path best;
+    long best_step = -1;
+    std::error_code ec;
+    for (const auto& e : std::filesystem::directory_iterator(dir, ec)) {
+        const std::string f = e.path().filename().string();
+        if (f.rfind(prefix, 0) != 0 || e.path().extension() != ".h5") continue;
+        const std::string digits = f.substr(prefix.size(), f.size() - prefix.size() - 3);
+        if (digits.empty() || !std::all_of(digits.begin(), digits.end(), [](char c) { return std::isdigit(c); })) continue;
+        const long step = std::stol(digits);
+        if (step > best_step) best_step = step, best = e.path();
+    }
+    if (best_step < 0)
+        throw InputError(fmt::format("no restart file of run '{}' ({}<step>.h5) in '{}'", name, prefix, dir.string()));
+    return best;
+}
+
+void ExplicitSolver::restart_dumps() {
+    const double tol = 1e-12 * opt_.end_time;
+    bool due = false;
+    std::size_t passed = 0;
+    while (passed < restart_times_.size() && t_ + tol >= restart_times_[passed]) ++passed;
+    if (passed > 0) {
+        restart_times_.erase(restart_times_.begin(), restart_times_.begin() + static_cast<long>(passed));
+        due = true;
+    }
+    if (opt_.restart_interval > 0.0 && t_ + tol >= next_restart_) {
+        next_restart_ = t_ + opt_.restart_interval;
+        due = true;
+    }
+    if (!due) return;
+    const auto path = opt_.restart_dir / fmt::format("{}-restart-{:09d}.h5", safe_file_name(opt_.name), step_);
+    write_restart(path);
+    restart_files_.push_back(path);
+}
+
+void ExplicitSolver::write_restart(const std::filesystem::path& path) const {
+    io::H5Writer w(path);
+    w.attribute("/", "format", kRestartFormat);
+    w.attribute("/", "run", opt_.name);
+    w.attribute("/", "time", t_);
+    w.attribute("/", "step", static_cast<double>(step_));
+    // What the restarting model must match.
+    w.attribute("/", "nodes", static_cast<double>(s_.node_count()));
+    w.attribute("/", "rotational_nodes", static_cast<double>(s_.rotational_count()));
+    w.attribute("/", "groups", joined(group_signature(model_)));
+    w.attribute("/", "force_providers", joined(provider_names(model_)));
+    // Nodal state at t(n): x(n), v(n-1/2), the internal forces at x(n) (not recomputed on restart:
+    // a group with history variables must not be evaluated twice), rotations.
+    w.write("state/x", vec3_rows(s_.x));
+    w.write("state/v", vec3_rows(s_.v));
+    w.write("state/f", vec3_rows(s_.f));
+    if (!s_.fv.empty()) w.write("state/fv", vec3_rows(s_.fv));
+    w.write("state/omega", vec3_rows(s_.omega));
+    w.write("state/moment", vec3_rows(s_.moment));
+    Eigen::MatrixXd R(s_.rotational_count(), 9);
+    for (int k = 0; k < s_.rotational_count(); ++k)
+        for (int a = 0; a < 9; ++a) R(k, a) = s_.rotation[k](a / 3, a % 3);
+    w.write("state/rotation", R);
+    // Solver scalars: time and step control, energy accumulators, summary statistics, schedules.
+    const EnergySummary& E = summary_.energy;
+    const std::vector<std::pair<const char*, double>> scalars = {
+        {"t", t_}, {"step", static_cast<double>(step_)}, {"dt_half", dt_half_}, {"dt_prev", dt_prev_},
+        {"dt_crit", dt_crit_}, {"dt_crit_unscaled", dt_crit_unscaled_}, {"dt_group", static_cast<double>(dt_group_)},
+        {"dt_element", static_cast<double>(dt_element_)}, {"stability_factor", stability_factor_},
+        {"omega_max", omega_max_}, {"ctrl_min", ctrl_min_}, {"ctrl_group", static_cast<double>(ctrl_group_)},
+        {"ctrl_element", static_cast<double>(ctrl_element_)}, {"e_int", e_int_}, {"e_hg", e_hg_},
+        {"visc_power", visc_power_}, {"e_kin", e_kin_}, {"e_damp", e_damp_}, {"e_visc", e_visc_}, {"w_ext", w_ext_},
+        {"w_abs", w_abs_}, {"w_prov", w_prov_}, {"e0", e0_}, {"input_scale", input_scale_},
+        {"next_history", next_history_}, {"next_vtu", next_vtu_}, {"next_observer", next_observer_},
+        {"last_observer", last_observer_}, {"first_dt", summary_.first_dt}, {"min_dt", summary_.min_dt},
+        {"max_dt", summary_.max_dt}, {"controlling_dt", summary_.controlling_dt}, {"E_kinetic", E.kinetic},
+        {"E_internal", E.internal}, {"E_hourglass", E.hourglass}, {"E_damping", E.damping}, {"E_viscous", E.viscous},
+        {"E_external", E.external}, {"E_contact", E.contact}, {"E_initial", E.initial},
+        {"E_balance_error", E.balance_error}, {"E_max_abs_balance_error", E.max_abs_balance_error},
+        {"E_reference", E.reference}};
+    for (const auto& [name, value] : scalars) w.write(std::string("solver/") + name, std::vector<double>{value});
+    std::vector<std::string> vm_parts;
+    std::vector<double> vm_values;
+    for (const auto& [part, vm] : max_vm_) vm_parts.push_back(part), vm_values.push_back(vm);
+    w.write("solver/max_vm", vm_values);
+    w.attribute("/", "max_vm_parts", joined(vm_parts));
+    w.write("solver/group_vm", group_vm_);
+    // Histories so far (the restarted run's outputs then cover the whole run).
+    const History& h = history_;
+    w.write("history/time", h.time);
+    std::vector<std::string> names;
+    std::vector<long long> ids;
+    for (std::size_t k = 0; k < h.nodes.size(); ++k) {
+        names.push_back(h.nodes[k].name);
+        ids.push_back(h.nodes[k].node);
+        w.write(fmt::format("history/node{}/displacement", k), vec3_rows(h.nodes[k].displacement));
+        w.write(fmt::format("history/node{}/velocity", k), vec3_rows(h.nodes[k].velocity));
+    }
+    w.write_ints("history/node_ids", ids);
+    w.attribute("/", "history_node_names", joined(names));
+    const std::vector<std::pair<const char*, const std::vector<double>*>> series = {
+        {"kinetic", &h.kinetic}, {"internal", &h.internal}, {"hourglass", &h.hourglass}, {"damping", &h.damping},
+        {"viscous", &h.viscous}, {"external", &h.external}, {"contact", &h.contact}, {"balance", &h.balance}};
+    for (const auto& [name, v] : series) w.write(std::string("history/") + name, *v);
+    std::vector<std::string> hv_parts;
+    int k = 0;
+    for (const auto& [part, v] : h.max_von_mises) {
+        hv_parts.push_back(part);
+        w.write(fmt::format("history/max_von_mises{}", k++), v);
+    }
+    w.attribute("/", "history_von_mises_parts", joined(hv_parts));
+    // The VTU series so far.
+    std::vector<double> pvd_t;
+    std::vector<std::string> pvd_f;
+    if (pvd_)
+        for (const auto& [t, f] : pvd_->entries()) pvd_t.push_back(t), pvd_f.push_back(f);
+    w.write("pvd/time", pvd_t);
+    w.attribute("/", "pvd_path", opt_.pvd_path.string());
+    w.attribute("/", "pvd_files", joined(pvd_f));
+    // The groups' and force providers' own state.
+    for (std::size_t g = 0; g < model_.groups().size(); ++g) model_.groups()[g]->save_state(w, fmt::format("groups/{}/", g));
+    for (std::size_t p = 0; p < model_.force_providers().size(); ++p)
+        model_.force_providers()[p]->save_state(w, fmt::format("providers/{}/", p));
+    w.commit();
+}
+
+void ExplicitSolver::restore(const std::filesystem::path& path) {
+    const io::H5Reader r(path);
+    const std::string file = fmt::format("restart file '{}'", path.string());
+    if (r.attribute_string("/", "format") != kRestartFormat)
+        throw InputError(fmt::format("{} is not an explicit solver restart file ({})", file, kRestartFormat));
+    // The model must be the one that wrote it (loads, motions, options may differ).
+    const auto mismatch = [&](const std::string& what, const std::string& in_file, const std::string& in_model) {
+        return InputError(fmt::format("{} does not match the model of run '{}': {} is {} in the file but {} in the "
+                                      "model",
+                                      file, opt_.name, what, in_file, in_model));
+    };
+    const auto n_file = static_cast<int>(r.attribute_number("/", "nodes"));
+    if (n_file != s_.node_count())
+        throw mismatch("the node count", std::to_string(n_file), std::to_string(s_.node_count()));
+    const auto nr_file = static_cast<int>(r.attribute_number("/", "rotational_nodes"));
+    if (nr_file != s_.rotational_count())
+        throw mismatch("the number of nodes with rotations", std::to_string(nr_file), std::to_string(s_.rotational_count()));
+    const auto groups_file = split_lines(r.attribute_string("/", "groups")), groups_model = group_signature(model_);
+    for (std::size_t g = 0; g < std::max(groups_file.size(), groups_model.size()); ++g) {
+        const std::string a = g < groups_file.size() ? groups_file[g] : "missing";
+        const std::string b = g < groups_model.size() ? groups_model[g] : "missing";
+        if (a != b) throw mismatch(fmt::format("element group {}", g), a, b);
+    }
+    const auto prov_file = split_lines(r.attribute_string("/", "force_providers")), prov_model = provider_names(model_);
+    for (std::size_t p = 0; p < std::max(prov_file.size(), prov_model.size()); ++p) {
+        const std::string a = p < prov_file.size() ? "'" + prov_file[p] + "'" : "missing";
+        const std::string b = p < prov_model.size() ? "'" + prov_model[p] + "'" : "missing";
+        if (a != b) throw mismatch(fmt::format("contact interface (force provider) {}", p), a, b);
+    }
+    // Nodal state.
+    const auto read_vec3 = [&](const std::string& name, std::vector<Vec3>& v, int rows) {
+        const Eigen::MatrixXd m = r.read_matrix(name);
+        if (m.rows() != rows || (rows > 0 && m.cols() != 3))
+            throw InputError(fmt::format("{}: dataset '{}' has {} rows, expected {}", file, name, m.rows(), rows));
+        v.resize(rows);
+        for (int i = 0; i < rows; ++i) v[i] = m.row(i).transpose();
+    };
+    const int n = s_.node_count(), nr = s_.rotational_count();
+    read_vec3("state/x", s_.x, n);
+    read_vec3("state/v", s_.v, n);
+    read_vec3("state/f", s_.f, n);
+    if (!s_.fv.empty()) {
+        if (!r.has("state/fv"))
+            throw InputError(fmt::format("{} has no viscous forces (state/fv), which this model books (a group with "
+                                         "bulk viscosity or beta damping, exact_viscous_energy)",
+                                         file));
+        read_vec3("state/fv", s_.fv, n);
+    }
+    read_vec3("state/omega", s_.omega, nr);
+    read_vec3("state/moment", s_.moment, nr);
+    const Eigen::MatrixXd R = r.read_matrix("state/rotation");
+    for (int k = 0; k < nr; ++k)
+        for (int a = 0; a < 9; ++a) s_.rotation[k](a / 3, a % 3) = R(k, a);
+    // Scalars.
+    const auto get = [&](const char* name) {
+        const std::vector<double> v = r.read(std::string("solver/") + name);
+        if (v.size() != 1) throw InputError(fmt::format("{}: solver/{} is not a number", file, name));
+        return v[0];
+    };
+    t_ = get("t");
+    step_ = static_cast<long>(get("step"));
+    dt_half_ = get("dt_half");
+    dt_prev_ = get("dt_prev");
+    dt_crit_ = get("dt_crit");
+    dt_crit_unscaled_ = get("dt_crit_unscaled");
+    dt_group_ = static_cast<int>(get("dt_group"));
+    dt_element_ = static_cast<int>(get("dt_element"));
+    stability_factor_ = get("stability_factor");
+    omega_max_ = get("omega_max");
+    ctrl_min_ = get("ctrl_min");
+    ctrl_group_ = static_cast<int>(get("ctrl_group"));
+    ctrl_element_ = static_cast<int>(get("ctrl_element"));
+    e_int_ = get("e_int");
+    e_hg_ = get("e_hg");
+    visc_power_ = get("visc_power");
+    e_kin_ = get("e_kin");
+    e_damp_ = get("e_damp");
+    e_visc_ = get("e_visc");
+    w_ext_ = get("w_ext");
+    w_abs_ = get("w_abs");
+    w_prov_ = get("w_prov");
+    e0_ = get("e0");
+    input_scale_ = get("input_scale");
+    next_history_ = get("next_history");
+    next_vtu_ = get("next_vtu");
+    next_observer_ = get("next_observer");
+    last_observer_ = get("last_observer");
+    summary_.first_dt = get("first_dt");
+    summary_.min_dt = get("min_dt");
+    summary_.max_dt = get("max_dt");
+    summary_.controlling_dt = get("controlling_dt");
+    EnergySummary& E = summary_.energy;
+    E.kinetic = get("E_kinetic");
+    E.internal = get("E_internal");
+    E.hourglass = get("E_hourglass");
+    E.damping = get("E_damping");
+    E.viscous = get("E_viscous");
+    E.external = get("E_external");
+    E.contact = get("E_contact");
+    E.initial = get("E_initial");
+    E.balance_error = get("E_balance_error");
+    E.max_abs_balance_error = get("E_max_abs_balance_error");
+    E.reference = get("E_reference");
+    // The measured stability factor carries over (the start-up measurement is not repeated).
+    auto& groups = model_.groups();
+    for (std::size_t gi = 0; gi < groups.size(); ++gi)
+        if (solid_[gi] && !groups[gi]->set_stability_factor(stability_factor_)) dt_factor_[gi] = stability_factor_;
+    summary_.stability_factor = stability_factor_;
+    max_vm_.clear();
+    const auto vm_parts = split_lines(r.attribute_string("/", "max_vm_parts"));
+    const auto vm_values = r.read("solver/max_vm");
+    for (std::size_t i = 0; i < vm_parts.size() && i < vm_values.size(); ++i) max_vm_[vm_parts[i]] = vm_values[i];
+    group_vm_ = r.read("solver/group_vm");
+    group_vm_.resize(groups.size());
+    // Histories: continued when this run records the same nodes; otherwise a new history from here.
+    std::vector<std::string> names;
+    std::vector<long long> ids;
+    for (const auto& h : history_.nodes) names.push_back(h.name), ids.push_back(h.node);
+    if (split_lines(r.attribute_string("/", "history_node_names")) == names && r.read_ints("history/node_ids") == ids) {
+        History& h = history_;
+        h.time = r.read("history/time");
+        const int samples = static_cast<int>(h.time.size());
+        for (std::size_t k = 0; k < h.nodes.size(); ++k) {
+            read_vec3(fmt::format("history/node{}/displacement", k), h.nodes[k].displacement, samples);
+            read_vec3(fmt::format("history/node{}/velocity", k), h.nodes[k].velocity, samples);
+        }
+        const std::vector<std::pair<const char*, std::vector<double>*>> series = {
+            {"kinetic", &h.kinetic}, {"internal", &h.internal}, {"hourglass", &h.hourglass}, {"damping", &h.damping},
+            {"viscous", &h.viscous}, {"external", &h.external}, {"contact", &h.contact}, {"balance", &h.balance}};
+        for (const auto& [name, v] : series) *v = r.read(std::string("history/") + name);
+        int k = 0;
+        for (const auto& part : split_lines(r.attribute_string("/", "history_von_mises_parts")))
+            h.max_von_mises[part] = r.read(fmt::format("history/max_von_mises{}", k++));
+    } else {
+        next_history_ = t_;  // a new history, from the restart on
+    }
+    // The VTU series continues when it is the same file.
+    if (pvd_) {
+        if (r.attribute_string("/", "pvd_path") == opt_.pvd_path.string()) {
+            const auto times = r.read("pvd/time");
+            const auto files = split_lines(r.attribute_string("/", "pvd_files"));
+            std::vector<std::pair<double, std::string>> entries;
+            for (std::size_t i = 0; i < times.size() && i < files.size(); ++i) entries.push_back({times[i], files[i]});
+            pvd_->resume(std::move(entries));
+        } else {
+            next_vtu_ = t_;
+        }
+    }
+    // The groups' and providers' own state (after the providers' initialize).
+    for (std::size_t g = 0; g < groups.size(); ++g) groups[g]->restore_state(r, fmt::format("groups/{}/", g));
+    for (std::size_t p = 0; p < model_.force_providers().size(); ++p)
+        model_.force_providers()[p]->restore_state(r, fmt::format("providers/{}/", p));
+    restarted_ = true;
+}
+
 double ExplicitSolver::choose_dt() const {
     // Force providers' springs (contact penalties) act in parallel with the elements, so
     // omega_max^2 <= omega_elements^2 + sum omega_p^2 (Weyl's inequality): the stable steps
@@ -844,25 +1198,29 @@ RunSummary ExplicitSolver::run() {
         ++T.clock_reads;
     };
 
-    dt_half_ = choose_dt();
-    dt_prev_ = 0.0;
-    summary_.first_dt = dt_half_;
-    summary_.min_dt = std::numeric_limits<double>::infinity();
-    summary_.max_dt = 0.0;
-    // The controlling element: the one with the smallest critical step (stability factor applied)
-    // over the run; the summary reports its step before the factor.
-    ctrl_min_ = dt_crit_;
-    summary_.controlling_dt = dt_crit_unscaled_;
-    ctrl_group_ = dt_group_;
-    ctrl_element_ = dt_element_;
     EnergySummary& E = summary_.energy;
-    E.initial = e0_;
-    E.kinetic = e_kin_;
-    E.internal = e_int_;
-    E.hourglass = e_hg_;
-    record(true);
-    write_vtu(0.0);
-    notify_observer(true);
+    if (!restarted_) {  // (a restarted run has all this from its file)
+        dt_half_ = choose_dt();
+        dt_prev_ = 0.0;
+        summary_.first_dt = dt_half_;
+        summary_.min_dt = std::numeric_limits<double>::infinity();
+        summary_.max_dt = 0.0;
+        // The controlling element: the one with the smallest critical step (stability factor
+        // applied) over the run; the summary reports its step before the factor.
+        ctrl_min_ = dt_crit_;
+        summary_.controlling_dt = dt_crit_unscaled_;
+        ctrl_group_ = dt_group_;
+        ctrl_element_ = dt_element_;
+        E.initial = e0_;
+        E.kinetic = e_kin_;
+        E.internal = e_int_;
+        E.hourglass = e_hg_;
+        record(true);
+        write_vtu(0.0);
+        notify_observer(true);
+    } else if (history_.time.empty()) {
+        record(true);  // a restart that records other nodes: a new history from the restart's state on
+    }
     lap(T.output);
 
     // Energy bookkeeping: wext/damp are the work over step n of the forces at time n, taken with
@@ -1096,6 +1454,7 @@ RunSummary ExplicitSolver::run() {
         record(false);
         write_vtu(t_);
         notify_observer(false);
+        restart_dumps();
         lap(T.output);
         if (progress) {
             const auto now = std::chrono::steady_clock::now();

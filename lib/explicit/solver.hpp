@@ -229,6 +229,18 @@ struct ExplicitOptions {
     // Deformed states for ParaView (VTU files listed in a PVD) every vtu_interval.
     std::filesystem::path pvd_path;
     double vtu_interval = 0.0;
+    // Restart dumps (LS-DYNA's d3dump): the complete solver state, written at the first cycle at or
+    // after each of restart_times and/or every restart_interval [s], one HDF5 file per dump,
+    // <restart_dir>/<name>-restart-<step>.h5 (step zero-padded, so the names sort in time), each
+    // written under a temporary name and renamed (a killed run never leaves a half-written dump).
+    // restart_from: start from such a file instead of t = 0, with this model and these options (which
+    // may change loads, motions, gravity, damping, end time, outputs: a "full deck restart"); the
+    // model must have the same mesh, groups and force providers (else InputError). With an unchanged
+    // model and options the run continues bit for bit as if it had never stopped (README: restart).
+    std::vector<double> restart_times;
+    double restart_interval = 0.0;
+    std::filesystem::path restart_dir;
+    std::filesystem::path restart_from;
     // When the observer runs: < 0 at every history sample (the default); 0 every cycle; > 0 every
     // observer_interval [s] (the first cycle at or after each), whatever the history interval. So an
     // observer can watch every cycle without the history storing every cycle.
@@ -337,6 +349,13 @@ public:
     double stability_factor() const { return stability_factor_; }
     /// omega_max of the solid groups measured at the start (0 when not measured).
     double measured_omega_max() const { return omega_max_; }
+    /// Restart files written by this run so far (ExplicitOptions::restart_times/restart_interval).
+    const std::vector<std::filesystem::path>& restart_files() const { return restart_files_; }
+    /// The latest restart file of run `name` in `dir` (the highest step), e.g. to resume a killed
+    /// run; InputError when there is none.
+    static std::filesystem::path latest_restart(const std::filesystem::path& dir, std::string_view name);
+    /// Writes the complete state to `path` (what the restart options do at their times).
+    void write_restart(const std::filesystem::path& path) const;
     /// Largest element von Mises stress of part `part` at the last force evaluation (0 for a part
     /// without groups), for observers that watch every cycle; History::max_von_mises holds the
     /// maxima between history samples.
@@ -348,6 +367,9 @@ private:
     void external_forces(double t);
     void record(bool force);
     void notify_observer(bool force);
+    void start_fresh(double solid_table_dt);
+    void restore(const std::filesystem::path& path);
+    void restart_dumps();
     double choose_dt() const;
     void write_vtu(double t);
     [[noreturn]] void unstable(const std::string& why);
@@ -393,6 +415,10 @@ private:
     double next_observer_ = 0.0, last_observer_ = -1.0;
     std::vector<double> group_vm_;          // per group: largest von Mises at the last force evaluation
     TimingSummary timing_;
+    bool restarted_ = false;                 // initialized from a restart file
+    std::vector<double> restart_times_;      // sorted, those still to come
+    double next_restart_ = 0.0;              // by restart_interval
+    std::vector<std::filesystem::path> restart_files_;
     std::vector<double> provider_s_;        // per provider: wall time in add_forces
 };
 
