@@ -168,12 +168,7 @@ TEST(ContactRestart, RestartFileOfAnotherModelIsRefused) {
         ExplicitOptions o = options(0.01, dir);
         o.pvd_path.clear();
         o.restart_from = sb.restart_files()[0];
-        try {
-            ExplicitSolver s(model, o);
-        } catch (const InputError& e) {
-            return std::string(e.what());
-        }
-        return std::string("accepted");
+        return test::input_error([&] { ExplicitSolver s(model, o); });
     };
     PalletModel no_contact = make_model(mesh, false);
     EXPECT_NE(refusal(*no_contact.model).find("contact interface (force provider) 0 is 'block on pallet' in the file but "

@@ -7,6 +7,7 @@
 
 #include "core/error.hpp"
 #include "explicit/curve.hpp"
+#include "explicit_test_support.hpp"
 
 using namespace fem;
 
@@ -73,16 +74,8 @@ TEST(Curve, PulseStepAndPiecewiseConstantSchedules) {
 
 TEST(Curve, BadPointsAreRefusedWithTheCurveName) {
     const double nan = std::numeric_limits<double>::quiet_NaN();
-    auto message = [](auto make) {
-        try {
-            make();
-        } catch (const InputError& e) {
-            return std::string(e.what());
-        }
-        return std::string("no error");
-    };
-    EXPECT_NE(message([] { Curve({{0, 0}, {1, 1}, {0.5, 2}}, "speed"); }).find("'speed'"), std::string::npos);
-    EXPECT_NE(message([] { Curve({{0, 0}, {1, 1}, {1, 2}, {1, 3}}, "speed"); }).find("three points"), std::string::npos);
+    EXPECT_NE(test::input_error([] { Curve({{0, 0}, {1, 1}, {0.5, 2}}, "speed"); }).find("'speed'"), std::string::npos);
+    EXPECT_NE(test::input_error([] { Curve({{0, 0}, {1, 1}, {1, 2}, {1, 3}}, "speed"); }).find("three points"), std::string::npos);
     EXPECT_THROW(Curve({}, "empty"), InputError);
     EXPECT_THROW(Curve({{0, nan}}, "nan"), InputError);
     EXPECT_THROW(Curve::steps({{0, 1}, {0, 2}}), InputError);

@@ -16,6 +16,15 @@ namespace fs = std::filesystem;
 
 namespace {
 const ElasticMaterial kSteel = ElasticMaterial::make("steel", 210e9, 0.3, 7800);
+
+// A steel bar clamped at x = 0 and pulled sideways at its free end (10 N per node, ramped over 0.1 ms).
+std::unique_ptr<ExplicitModel> pulled_bar(const Mesh& mesh) {
+    auto model = std::make_unique<ExplicitModel>(mesh);
+    model->add_hex8("bar", kSteel);
+    model->fix(mesh.node_set("x0"), Dofs::all());
+    model->add_nodal_force(mesh.node_set("x1"), Vec3(0, 10, 0), Curve({{0, 0}, {1e-4, 1}}));
+    return model;
+}
 }
 
 TEST(ExplicitOutput, WritesHistoriesVtuAndSummary) {
@@ -23,11 +32,8 @@ TEST(ExplicitOutput, WritesHistoriesVtuAndSummary) {
     fs::remove_all(dir);
     fs::create_directories(dir);
     Mesh mesh = box_hex8(0.1, 0.02, 0.02, 5, 1, 1, "bar");
-    ExplicitModel model(mesh);
-    model.add_hex8("bar", kSteel);
-    model.fix(mesh.node_set("x0"), Dofs::all());
+    auto model = pulled_bar(mesh);
     const int tip = mesh.node_set("x1")[0];
-    model.add_nodal_force(mesh.node_set("x1"), Vec3(0, 10, 0), Curve({{0, 0}, {1e-4, 1}}));
     ExplicitOptions o;
     o.end_time = 2e-4;
     o.progress = false;
@@ -38,7 +44,7 @@ TEST(ExplicitOutput, WritesHistoriesVtuAndSummary) {
     o.h5_path = dir / "run.h5";
     o.pvd_path = dir / "run.pvd";
     o.vtu_interval = 5e-5;
-    ExplicitSolver solver(model, o);
+    ExplicitSolver solver(*model, o);
     const RunSummary sum = solver.run();
     ASSERT_TRUE(fs::exists(o.h5_path));
     ASSERT_TRUE(fs::exists(o.pvd_path));
@@ -227,16 +233,13 @@ TEST(ExplicitLoads, PrescribedMotionIsFollowedExactly) {
 // An observer can end the run early (e.g. once contact is over); the summary reports the time reached.
 TEST(ExplicitOutput, ObserverCanStopTheRun) {
     Mesh mesh = box_hex8(0.1, 0.02, 0.02, 5, 1, 1, "bar");
-    ExplicitModel model(mesh);
-    model.add_hex8("bar", kSteel);
-    model.fix(mesh.node_set("x0"), Dofs::all());
-    model.add_nodal_force(mesh.node_set("x1"), Vec3(0, 10, 0), Curve({{0, 0}, {1e-4, 1}}));
+    auto model = pulled_bar(mesh);
     ExplicitOptions o;
     o.end_time = 1e-3;
     o.progress = false;
     o.print_summary = false;
     o.history_interval = 1e-5;
-    ExplicitSolver solver(model, o);
+    ExplicitSolver solver(*model, o);
     solver.observer = [](const ExplicitSolver& s) {
         if (s.time() >= 2e-4) s.request_stop();
     };
@@ -251,17 +254,10 @@ TEST(ExplicitOutput, ObserverCanStopTheRun) {
 // same as the history's maxima when the history stores every cycle.
 TEST(ExplicitOutput, ObserverIntervalIsIndependentOfTheHistory) {
     Mesh mesh = box_hex8(0.1, 0.02, 0.02, 5, 1, 1, "bar");
-    auto make = [&]() {
-        auto model = std::make_unique<ExplicitModel>(mesh);
-        model->add_hex8("bar", kSteel);
-        model->fix(mesh.node_set("x0"), Dofs::all());
-        model->add_nodal_force(mesh.node_set("x1"), Vec3(0, 10, 0), Curve({{0, 0}, {1e-4, 1}}));
-        return model;
-    };
     std::vector<double> vm_every_cycle, vm_history;
     long calls = 0;
     {
-        auto model = make();
+        auto model = pulled_bar(mesh);
         ExplicitOptions o;
         o.end_time = 1e-3, o.progress = false, o.print_summary = false, o.history_interval = 1e-4, o.observer_interval = 0;
         ExplicitSolver solver(*model, o);
@@ -275,7 +271,7 @@ TEST(ExplicitOutput, ObserverIntervalIsIndependentOfTheHistory) {
         EXPECT_EQ(solver.max_von_mises("nothere"), 0.0);
     }
     {
-        auto model = make();
+        auto model = pulled_bar(mesh);
         ExplicitOptions o;
         o.end_time = 1e-3, o.progress = false, o.print_summary = false, o.history_interval = 0.0;
         ExplicitSolver solver(*model, o);
@@ -284,7 +280,7 @@ TEST(ExplicitOutput, ObserverIntervalIsIndependentOfTheHistory) {
     }
     EXPECT_EQ(vm_every_cycle, vm_history);
     {
-        auto model = make();
+        auto model = pulled_bar(mesh);
         ExplicitOptions o;
         o.end_time = 1e-3, o.progress = false, o.print_summary = false, o.history_interval = 0.0, o.observer_interval = 5e-5;
         ExplicitSolver solver(*model, o);
@@ -302,15 +298,12 @@ TEST(ExplicitOutput, ObserverIntervalIsIndependentOfTheHistory) {
 // "other" add up to the wall time, element forces took time, text and JSON carry the table.
 TEST(ExplicitOutput, SummarySplitsTheWallTime) {
     Mesh mesh = box_hex8(0.1, 0.02, 0.02, 20, 4, 4, "bar");
-    ExplicitModel model(mesh);
-    model.add_hex8("bar", kSteel);
-    model.fix(mesh.node_set("x0"), Dofs::all());
-    model.add_nodal_force(mesh.node_set("x1"), Vec3(0, 10, 0), Curve({{0, 0}, {1e-4, 1}}));
+    auto model = pulled_bar(mesh);
     ExplicitOptions o;
     o.end_time = 2e-4;
     o.progress = false;
     o.print_summary = false;
-    ExplicitSolver solver(model, o);
+    ExplicitSolver solver(*model, o);
     const RunSummary sum = solver.run();
     const TimingSummary& T = sum.timing;
     for (double t : {T.elements, T.contact_search, T.contact_forces, T.constraints, T.update, T.output, T.other})

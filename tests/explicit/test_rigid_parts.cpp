@@ -120,26 +120,18 @@ TEST(RigidPart, SharingNodesWithADeformablePartTiesThem) {
 
 TEST(RigidPart, BadDeclarationsNameThePartAndTheNode) {
     const Mesh mesh = drum_and_finger();
-    auto message = [](auto make) {
-        try {
-            make();
-        } catch (const InputError& e) {
-            return std::string(e.what());
-        }
-        return std::string("no error");
-    };
     {
         ExplicitModel model(mesh);
         EXPECT_THROW(model.add_rigid_part("wheel", {}), InputError);  // no such part
         model.add_rigid_part("drum", {});
-        EXPECT_NE(message([&] { model.add_rigid_part("drum", {}); }).find("already rigid"), std::string::npos);
+        EXPECT_NE(test::input_error([&] { model.add_rigid_part("drum", {}); }).find("already rigid"), std::string::npos);
     }
     {
         ExplicitModel model(mesh);
         model.add_hex8("finger", kRubber);
         model.add_hex8("drum", kRubber);
         model.add_rigid_part("drum", {});
-        EXPECT_NE(message([&] { ExplicitSolver s(model, quiet(1e-3)); }).find("part 'drum' is rigid"), std::string::npos);
+        EXPECT_NE(test::input_error([&] { ExplicitSolver s(model, quiet(1e-3)); }).find("part 'drum' is rigid"), std::string::npos);
     }
     {
         ExplicitModel model(mesh);
@@ -147,7 +139,7 @@ TEST(RigidPart, BadDeclarationsNameThePartAndTheNode) {
         model.add_rigid_part("drum", {});
         const int shared = mesh.blocks[1].connectivity[0];
         model.prescribe_motion({shared}, RigidMotion::translation(Vec3(1, 0, 0)));
-        const std::string e = message([&] { ExplicitSolver s(model, quiet(1e-3)); });
+        const std::string e = test::input_error([&] { ExplicitSolver s(model, quiet(1e-3)); });
         EXPECT_NE(e.find(fmt::format("node {} follows two motions", shared)), std::string::npos) << e;
         EXPECT_NE(e.find("rigid part 'drum'"), std::string::npos) << e;
     }
