@@ -199,6 +199,24 @@ Mesh rectangle_quads(double lx, double ly, int nx, int ny, ElementShape shape, s
     return m;
 }
 
+Mesh parallelogram_quad4(const Vec3& centre, const Vec3& u, const Vec3& v, int nu, int nv, std::string part) {
+    if (nu < 1 || nv < 1 || !(u.cross(v).norm() > 0.0))
+        throw InputError("parallelogram_quad4 '" + part + "': needs nu, nv >= 1 and non-parallel u, v");
+    Mesh m;
+    for (int j = 0; j <= nv; ++j)
+        for (int i = 0; i <= nu; ++i)
+            m.add_node(centre + (static_cast<double>(i) / nu - 0.5) * u + (static_cast<double>(j) / nv - 0.5) * v);
+    ElementBlock b{std::move(part), ElementShape::Quad4, {}};
+    for (int j = 0; j < nv; ++j)
+        for (int i = 0; i < nu; ++i) {
+            const int a = j * (nu + 1) + i;
+            const int e[4] = {a, a + 1, a + nu + 2, a + nu + 1};
+            b.add(e);
+        }
+    m.blocks.push_back(std::move(b));
+    return m;
+}
+
 Mesh line_beam2(const Vec3& a, const Vec3& b, int n, std::string part) {
     if (n < 1) throw InputError("line_beam2 needs at least one element");
     require_int_count(n + 1.0, n, fmt::format("a line of {} beam elements", n));
