@@ -22,9 +22,15 @@
 // rebuild: O(segments x cells per box + nodes x candidates), i.e. proportional to the surface.
 #include <cstdint>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "core/types.hpp"
+
+namespace fem::io {
+class H5Writer;
+class H5Reader;
+}  // namespace fem::io
 
 namespace fem::contact {
 
@@ -80,6 +86,9 @@ public:
     long cycles() const { return cycles_; }
     double margin() const { return margin_; }
     void force_rebuild() { since_ = -1; }
+    /// Restart: the lists, the positions of the last rebuild and the counters, under `prefix`.
+    void save_state(io::H5Writer& w, const std::string& prefix) const;
+    void restore_state(const io::H5Reader& r, const std::string& prefix);
 
 private:
     double margin_;

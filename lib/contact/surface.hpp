@@ -9,9 +9,10 @@
 // themselves with k = s_f B A / max diagonal (Eq 2-30b), normal as numbered. The slave nodes are
 // the nodes of the surface faces; each carries the smallest k of the faces around it.
 //
-// A rigid surface (a drum, a fixed object, the ground) is a ContactSurface whose segment nodes are
-// its own points (RigidSurface::points, not mesh nodes) moved by a RigidMotion (rigid.hpp); its
-// stiffness is infinite, so a pair takes the deformable side's k.
+// A rigid surface (a drum, a fixed object, the ground, a pallet) is the surface of a rigid part of the
+// explicit model (ExplicitModel::add_rigid_part: the solver moves its nodes by its RigidMotion):
+// ContactSurface::rigid. Its stiffness is infinite, so a pair takes the deformable side's k; it is
+// a master only (no slave nodes).
 #include <array>
 #include <limits>
 #include <span>
@@ -25,8 +26,8 @@
 
 namespace fem::contact {
 
-/// One master segment: a quadrilateral (count 4, bilinear) or a triangle (count 3). Node indices
-/// refer to the mesh (deformable surface) or to RigidSurface::points (rigid surface).
+/// One master segment: a quadrilateral (count 4, bilinear) or a triangle (count 3); node indices
+/// into the mesh.
 struct Segment {
     std::array<int, 4> n{-1, -1, -1, -1};
     int count = 4;
@@ -42,6 +43,10 @@ struct ContactSurface {
     std::vector<Segment> segments;
     std::vector<int> nodes;               // slave candidates: every node of a segment, sorted
     std::vector<double> node_stiffness;   // per entry of `nodes`: smallest k of its segments
+    // Per entry of `nodes`: the local element size, the smallest over its faces of the owning
+    // element's thickness V / A normal to the face (shells: sqrt(A)); penetrations are reported as
+    // a fraction of it.
+    std::vector<double> node_size;
     bool rigid = false;
 
     /// The outer surface of every solid (hex8, tet4, tet10) and shell (quad4, tri3) block of `part`,
@@ -51,6 +56,11 @@ struct ContactSurface {
     /// surface elements.
     static ContactSurface from_part(const Mesh& mesh, std::string_view part, const ElasticMaterial& material,
                                     double scale_factor = 1.0);
+    /// The outer surface of the rigid part `part` (solid or shell blocks, ExplicitModel::add_rigid_part)
+    /// as a rigid master: infinite stiffness, penetration depth limit `depth` [m] (deeper nodes are
+    /// taken to be on the far side; a fraction of the body's thickness), no slave nodes. Throws
+    /// InputError for depth <= 0 or a part without surface elements.
+    static ContactSurface rigid_part(const Mesh& mesh, std::string_view part, double depth);
     /// Smallest / mean segment size (square root of area): for margins and cell sizes.
     double mean_segment_size() const;
 };

@@ -21,6 +21,11 @@
 
 namespace fem {
 
+namespace io {
+class H5Writer;
+class H5Reader;
+}  // namespace io
+
 struct NodalState {
     std::vector<Vec3> X;      // reference coordinates
     std::vector<Vec3> x;      // current coordinates (time n)
@@ -98,8 +103,24 @@ public:
     /// only when the solver's Lanczos measurement does not converge.
     virtual double element_omega_bound() const { return 0.0; }
 
+    /// Restart (ExplicitSolver dumps): the group's own state that a later cycle depends on (history
+    /// variables such as plastic strains or incremental hourglass forces), written under the HDF5
+    /// group `prefix` (ending in '/') and read back into a group built the same way. Not the nodal
+    /// state, nor the forces of the last evaluation (the solver saves those). Today's groups keep
+    /// none: hyperelastic, total-form hourglass control, so their forces follow from x and v alone.
+    virtual void save_state(io::H5Writer& w, const std::string& prefix) const {}
+    virtual void restore_state(const io::H5Reader& r, const std::string& prefix) {}
+
     std::string part;      // part name (from the block)
     int block = -1;        // block index in the mesh
+};
+
+/// What a contact force provider reports for the run summary (ForceProvider::contact_report).
+struct ContactReport {
+    bool is_contact = false;              // false: not a contact (nothing to report)
+    double max_penetration = 0.0;         // deepest penetration over the run [m]
+    double max_penetration_fraction = 0.0;  // deepest as a fraction of the slave's local element size
+    double stored_energy = 0.0, dissipated_energy = 0.0;  // contact energy = stored + dissipated [J]
 };
 
 /// State-dependent forces from outside the element groups (contact, couplings): the solver calls
@@ -117,6 +138,17 @@ public:
     virtual void add_forces(double t, const NodalState& s, std::vector<Vec3>& force, std::vector<Vec3>& moment) = 0;
     /// A limit on the step (e.g. penalty springs); infinity when it imposes none.
     virtual double stable_time_step(const NodalState& s) const { return std::numeric_limits<double>::infinity(); }
+    /// Of the wall time spent in add_forces so far, the part spent searching (contact: candidate
+    /// lists); the solver's timing table reports the rest as contact forces.
+    virtual double search_seconds() const { return 0.0; }
+    /// Penetration and energy statistics for the run summary (contact interfaces).
+    virtual ContactReport contact_report() const { return {}; }
+    /// Restart: everything a later add_forces depends on (contact: friction springs and the segment
+    /// each node sticks to, candidate lists and rebuild counters, energies), under the HDF5 group
+    /// `prefix`; restore_state reads it into a provider built the same way and initialized, and
+    /// throws InputError when it does not fit (surface sizes).
+    virtual void save_state(io::H5Writer& w, const std::string& prefix) const {}
+    virtual void restore_state(const io::H5Reader& r, const std::string& prefix) {}
 };
 
 }  // namespace fem

@@ -2,11 +2,15 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <utility>
 #include <sstream>
 
+#include <fmt/format.h>
+
 #include "core/error.hpp"
+#include "core/memory.hpp"
 
 namespace fem {
 
@@ -81,6 +85,16 @@ double centre_jacobian(ElementShape shape, const std::vector<Vec3>& x) {
     }
 }
 
+// Nodes and elements are numbered with int: a generator asked for more is refused before it
+// allocates anything (a 70000 x 70000 grid would overflow the node numbering).
+void require_int_count(double nodes, double elements, const std::string& what) {
+    constexpr double limit = std::numeric_limits<int>::max();
+    if (nodes > limit || elements > limit)
+        throw InputError(fmt::format("{} has {:.3g} nodes and {:.3g} elements; the library numbers both with 32-bit integers "
+                                     "(at most {})", what, nodes, elements, std::numeric_limits<int>::max()));
+    require_memory(nodes * sizeof(Vec3) + elements * 8 * sizeof(int), what);
+}
+
 }  // namespace
 
 void validate(const Mesh& mesh) {
@@ -115,6 +129,7 @@ void validate(const Mesh& mesh) {
 
 Mesh box_hex8(double lx, double ly, double lz, int nx, int ny, int nz, std::string part) {
     if (nx < 1 || ny < 1 || nz < 1) throw InputError("box_hex8 needs at least one element per direction");
+    require_int_count((nx + 1.0) * (ny + 1.0) * (nz + 1.0), 1.0 * nx * ny * nz, fmt::format("a {} x {} x {} hex8 box", nx, ny, nz));
     Mesh m;
     auto id = [&](int i, int j, int k) { return (k * (ny + 1) + j) * (nx + 1) + i; };
     for (int k = 0; k <= nz; ++k)
@@ -199,6 +214,11 @@ Mesh rectangle_quads(double lx, double ly, int nx, int ny, ElementShape shape, s
     if (nx < 1 || ny < 1) throw InputError("rectangle_quads needs at least one element per direction");
     if (shape != ElementShape::Quad4 && shape != ElementShape::Quad8)
         throw InputError("rectangle_quads makes quad4 or quad8 elements, not " + std::string(to_string(shape)));
+    {
+        const double s = shape == ElementShape::Quad8 ? 2 : 1;  // grid points per element edge
+        require_int_count((s * nx + 1) * (s * ny + 1), 1.0 * nx * ny,
+                          fmt::format("a {} x {} {} grid", nx, ny, to_string(shape)));
+    }
     Mesh m;
     const bool serendipity = shape == ElementShape::Quad8;
     // Quad8 uses a grid of half-spacing with the element-centre points left out.
@@ -233,8 +253,27 @@ Mesh rectangle_quads(double lx, double ly, int nx, int ny, ElementShape shape, s
     return m;
 }
 
+Mesh parallelogram_quad4(const Vec3& centre, const Vec3& u, const Vec3& v, int nu, int nv, std::string part) {
+    if (nu < 1 || nv < 1 || !(u.cross(v).norm() > 0.0))
+        throw InputError("parallelogram_quad4 '" + part + "': needs nu, nv >= 1 and non-parallel u, v");
+    Mesh m;
+    for (int j = 0; j <= nv; ++j)
+        for (int i = 0; i <= nu; ++i)
+            m.add_node(centre + (static_cast<double>(i) / nu - 0.5) * u + (static_cast<double>(j) / nv - 0.5) * v);
+    ElementBlock b{std::move(part), ElementShape::Quad4, {}};
+    for (int j = 0; j < nv; ++j)
+        for (int i = 0; i < nu; ++i) {
+            const int a = j * (nu + 1) + i;
+            const int e[4] = {a, a + 1, a + nu + 2, a + nu + 1};
+            b.add(e);
+        }
+    m.blocks.push_back(std::move(b));
+    return m;
+}
+
 Mesh line_beam2(const Vec3& a, const Vec3& b, int n, std::string part) {
     if (n < 1) throw InputError("line_beam2 needs at least one element");
+    require_int_count(n + 1.0, n, fmt::format("a line of {} beam elements", n));
     Mesh m;
     for (int i = 0; i <= n; ++i) m.add_node(a + (b - a) * (static_cast<double>(i) / n));
     ElementBlock blk{std::move(part), ElementShape::Beam2, {}};

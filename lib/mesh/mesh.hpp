@@ -82,6 +82,12 @@ Mesh box_tets(double lx, double ly, double lz, int nx, int ny, int nz, ElementSh
 Mesh rectangle_quads(double lx, double ly, int nx, int ny, ElementShape shape = ElementShape::Quad4,
                      std::string part = "plate");
 
+/// nu x nv Quad4 elements filling the parallelogram centred at `centre` spanned by u and v (full
+/// edge vectors), numbered counter-clockwise about u x v (their normal), part `part`: a flat rigid
+/// surface such as the ground or a conveyor pallet's top. Node (i, j) = centre + (i/nu - 1/2) u +
+/// (j/nv - 1/2) v is node j (nu + 1) + i.
+Mesh parallelogram_quad4(const Vec3& centre, const Vec3& u, const Vec3& v, int nu, int nv, std::string part);
+
 /// n two-node line elements from a to b, part `part`. Node sets "start" and "end".
 Mesh line_beam2(const Vec3& a, const Vec3& b, int n, std::string part = "beam");
 
