@@ -16,10 +16,10 @@ void ShellSection::validate(const char* owner) const {
         throw InputError(fmt::format("{}: shell thickness {} must be positive", owner, thickness));
     if (!(shear_factor > 0.0) || !std::isfinite(shear_factor))
         throw InputError(fmt::format("{}: transverse shear factor {} must be positive", owner, shear_factor));
-    if (bad(hourglass_membrane) || bad(hourglass_bending) || bad(hourglass_transverse))
-        throw InputError(fmt::format("{}: hourglass coefficients (membrane {}, bending {}, transverse {}) must not be "
-                                     "negative",
-                                     owner, hourglass_membrane, hourglass_bending, hourglass_transverse));
+    if (bad(hourglass_membrane) || bad(hourglass_bending) || bad(hourglass_transverse) || bad(drilling))
+        throw InputError(fmt::format("{}: hourglass coefficients (membrane {}, bending {}, transverse {}) and the "
+                                     "drilling coefficient {} must not be negative",
+                                     owner, hourglass_membrane, hourglass_bending, hourglass_transverse, drilling));
 }
 
 Constants Constants::from(const ElasticMaterial& m, const ShellSection& s) {
@@ -35,6 +35,7 @@ Constants Constants::from(const ElasticMaterial& m, const ShellSection& s) {
     c.r_m = s.hourglass_membrane;
     c.r_theta = s.hourglass_bending;
     c.r_w = s.hourglass_transverse;
+    c.r_d = s.drilling;
     return c;
 }
 
@@ -78,6 +79,9 @@ Frame make_frame(const std::array<Vec3, 4>& x) {
     for (int I = 0; I < 4; ++I) {
         f.gamma[I] = h[I] - hx * f.b1[I] - hy * f.b2[I];
         f.bb += f.b1[I] * f.b1[I] + f.b2[I] * f.b2[I];
+        f.gxx += f.gamma[I] * px[I] * px[I];
+        f.gyy += f.gamma[I] * py[I] * py[I];
+        f.gxy += f.gamma[I] * px[I] * py[I];
     }
     return f;
 }
@@ -97,6 +101,16 @@ std::array<double, 5> hourglass_stiffness(const Constants& c, const Frame& f) {
     const double kw = c.r_w * c.kappa_G * t3 / 12.0 * f.bb;
     const double km = c.r_m * c.E * c.t * f.area / 8.0 * f.bb;
     return {kth, kth, kw, km, km};
+}
+
+// Drilling penalty per node, r_d G t A / 4.
+double drilling_stiffness(const Constants& c, const Frame& f) { return c.r_d * c.G * c.t * f.area / 4.0; }
+
+// Twice the in-plane spin at the centre, B_1I du^y_I - B_2I du^x_I (local increments u[I][d]).
+double em_spin(const Frame& f, const double (&u)[4][3]) {
+    double w = 0.0;
+    for (int I = 0; I < 4; ++I) w += f.b1[I] * u[I][1] - f.b2[I] * u[I][0];
+    return w;
 }
 }  // namespace
 
@@ -144,6 +158,17 @@ void update_state(const Constants& c, const Frame& mid, const std::array<Vec3, 4
     }
     g[0] += 0.25 * sum_thy;
     g[1] -= 0.25 * sum_thx;
+    // Transverse hourglass relative to the w the rotation gradients imply (header).
+    {
+        double b1tx = 0, b1ty = 0, b2tx = 0, b2ty = 0;
+        for (int I = 0; I < 4; ++I) {
+            b1tx += mid.b1[I] * th[I][0];
+            b1ty += mid.b1[I] * th[I][1];
+            b2tx += mid.b2[I] * th[I][0];
+            b2ty += mid.b2[I] * th[I][1];
+        }
+        q[2] -= 0.5 * (-b1ty * mid.gxx + b2tx * mid.gyy + (b1tx - b2ty) * mid.gxy);
+    }
     for (int p = 0; p < kPoints; ++p) {
         const double z = kPointZ[p] * c.t;
         const double e0 = em[0] + z * k[0], e1 = em[1] + z * k[1], e2 = em[2] + z * k[2];
@@ -155,6 +180,12 @@ void update_state(const Constants& c, const Frame& mid, const std::array<Vec3, 4
     st.tau[1] += c.kappa_G * g[1];
     const auto kh = hourglass_stiffness(c, mid);
     for (int i = 0; i < 5; ++i) st.hourglass[i] += kh[i] * q[i];
+    if (c.r_d > 0.0) {
+        // Drilling penalty: each node's rotation about the normal against the in-plane spin.
+        const double kd = drilling_stiffness(c, mid);
+        const double spin = 0.5 * (em_spin(mid, u));
+        for (int I = 0; I < 4; ++I) st.drilling[I] += kd * (th[I][2] - spin);
+    }
 }
 
 void forces(const Constants& c, const Frame& f, const State& st, Result& out) {
@@ -182,11 +213,16 @@ void forces(const Constants& c, const Frame& f, const State& st, Result& out) {
     for (int i = 0; i < 5; ++i)
         if (kh[i] > 0.0) out.hourglass_energy += 0.5 * st.hourglass[i] * st.hourglass[i] / kh[i];
     const double* Q = st.hourglass;
+    const double md = 0.5 * (st.drilling[0] + st.drilling[1] + st.drilling[2] + st.drilling[3]);
+    if (c.r_d > 0.0) {
+        const double kd = drilling_stiffness(c, f);
+        for (int I = 0; I < 4; ++I) out.hourglass_energy += 0.5 * st.drilling[I] * st.drilling[I] / kd;
+    }
     Vec3 fl[4];
     double sx = 0.0, sy = 0.0;  // sum_I z^_I f^x_I, sum_I z^_I f^y_I (warping correction)
     for (int I = 0; I < 4; ++I) {
         const double b1 = f.b1[I], b2 = f.b2[I], gm = f.gamma[I];
-        fl[I] = Vec3(A * (b1 * N[0] + b2 * N[2]) + gm * Q[3], A * (b2 * N[1] + b1 * N[2]) + gm * Q[4],
+        fl[I] = Vec3(A * (b1 * N[0] + b2 * N[2]) + gm * Q[3] + b2 * md, A * (b2 * N[1] + b1 * N[2]) + gm * Q[4] - b1 * md,
                      A * (b1 * Qx + b2 * Qy) + gm * Q[2]);
         sx += f.warp[I] * fl[I].x();
         sy += f.warp[I] * fl[I].y();
@@ -194,8 +230,11 @@ void forces(const Constants& c, const Frame& f, const State& st, Result& out) {
     for (int I = 0; I < 4; ++I) {
         const double b1 = f.b1[I], b2 = f.b2[I], gm = f.gamma[I];
         fl[I].z() += b1 * sx + b2 * sy;
-        const Vec3 ml(-A * (b2 * M[1] + b1 * M[2] + 0.25 * Qy) + gm * Q[0],
-                      A * (b1 * M[0] + b2 * M[2] + 0.25 * Qx) + gm * Q[1], 0.0);
+        // Moments: bending, shear, bending hourglass, and the rotation part of the transverse
+        // hourglass (conjugate of its theta terms).
+        const Vec3 ml(-A * (b2 * M[1] + b1 * M[2] + 0.25 * Qy) + gm * Q[0] - 0.5 * Q[2] * (b2 * f.gyy + b1 * f.gxy),
+                      A * (b1 * M[0] + b2 * M[2] + 0.25 * Qx) + gm * Q[1] + 0.5 * Q[2] * (b1 * f.gxx + b2 * f.gxy),
+                      st.drilling[I]);
         out.force[I] = f.E * fl[I];
         out.moment[I] = f.E * ml;
     }
@@ -285,6 +324,14 @@ double rotational_inertia(const Constants& c, const Frame& f, double m, double t
         const double p = A * c.kappa_G * t * share[a] + A * D * (std::abs(b1[a]) + std::abs(b2[a])) * sum_b +
                          k_theta * std::abs(gm[a]) * sum_g;
         const double q = A * c.kappa_G * t * share[a] * std::max(sum_b1, sum_b2) / std::sqrt(m);
+        const double s = (-q + std::sqrt(q * q + 4.0 * p * w2)) / (2.0 * p);
+        J = std::max(J, 1.0 / (s * s));
+    }
+    if (c.r_d > 0.0) {
+        // Drilling row: k_d against J, coupling k_d (|B_1| + |B_2|) / 2 per node against sqrt(J m);
+        // each node of a triangle's repeated pair carries its own k_d.
+        const double kd = c.r_d * c.G * t * A / 4.0 * (triangle ? 2.0 : 1.0);
+        const double p = kd, q = kd * 0.5 * (sum_b1 + sum_b2) / std::sqrt(m);
         const double s = (-q + std::sqrt(q * q + 4.0 * p * w2)) / (2.0 * p);
         J = std::max(J, 1.0 / (s * s));
     }

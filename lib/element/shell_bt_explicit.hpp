@@ -52,8 +52,18 @@
 //      f^x_I = A (B_1I N_xx + B_2I N_xy),  f^y_I = A (B_2I N_yy + B_1I N_xy),  f^z_I = A (B_1I Q_x + B_2I Q_y)
 //      m^x_I = -A (B_2I M_yy + B_1I M_xy + Q_y / 4),  m^y_I = A (B_1I M_xx + B_2I M_xy + Q_x / 4),  m^z_I = 0
 //    evaluated on the end-of-step geometry x(n+1) and rotated to global axes. They are exactly
-//    self-equilibrated (zero net force and moment) for a flat element. No drilling stiffness
-//    (m^z = 0), as LS-DYNA.
+//    self-equilibrated (zero net force and moment) for a flat element.
+//  * Drilling: formulation 2 has no stiffness about the normal (m^z = 0). On a bent or curved
+//    mesh the local moments of neighbouring facets then leave a small unbalanced nodal moment
+//    about the normal that nothing resists: the node spins up (a simply supported plate under
+//    pressure, mass-damped: 0.36 rad/s of drilling spin at the end, growing with refinement, test
+//    ShellBtStatics.Drilling...). As MITC4 in this library (shell_mitc4.hpp) and most explicit
+//    codes' shells, a small penalty ties each node's rotation about the normal to the element's
+//    in-plane spin at the centre, omega_m = (B_1I du^y_I - B_2I du^x_I) / 2 (zero for every rigid
+//    motion): drilling moments m^z_I += k_d (dth^z_I - omega_m), k_d = r_d G t A / 4, with the
+//    conjugate in-plane forces f^x_J += B_2J sum m^z / 2, f^y_J -= B_1J sum m^z / 2. r_d = 1e-3
+//    (ShellSection::drilling; 0 gives formulation 2 as published); its energy sum (m^z)^2 / 2 k_d
+//    is reported with the hourglass energy (both are artificial stabilization).
 //  * Hourglass control (Belytschko-Tsay, stiffness form, LS-DYNA IHQ 4/5 type for shells): the
 //    hourglass vector h = (1, -1, 1, -1) made orthogonal to linear fields, gamma_I = h_I -
 //    (h . x^) B_1I - (h . y^) B_2I; generalized hourglass increments dq = gamma_I (dth^x_I,
@@ -67,6 +77,17 @@
 //    linear field, so rigid motions and the patch tests are untouched. Chosen over the viscous form
 //    because the thesis's parts vibrate freely for long times after the contacts (the viscous form
 //    would add damping no thesis number accounts for). Default r = 0.01 (ShellSection).
+//    One change to the transverse mode: w is quadratic in plate bending, and gamma . w of a twist
+//    w = x y (with theta = grad w, no shear) is not zero, so BT's k_w resists legitimate twisting
+//    (a simply supported square plate under pressure came out 0.15 % too stiff at r_w = 0.01 and
+//    1.4 % at 0.1, converging away from Timoshenko). As in Belytschko-Leviathan's physical
+//    stabilization, the transverse hourglass increment is taken relative to the quadratic w that the
+//    element's rotation gradients imply (w_xx = -d theta_y/dx, w_yy = d theta_x/dy, w_xy =
+//    (d theta_x/dx - d theta_y/dy) / 2 from the one-point gradients B theta):
+//      dq_w = gamma_I dw_I - [-(B_1 . dth^y) g_xx + (B_2 . dth^x) g_yy + (B_1 . dth^x - B_2 . dth^y) g_xy] / 2,
+//    g_ab = sum_I gamma_I a^_I b^_I; its conjugate moments go to the nodal rotations. It still
+//    resists the w-hourglass (w = h, theta = 0) fully and vanishes for every bending and twisting
+//    mode and every rigid motion (tests).
 //  * Triangles: degenerate quadrilaterals (node 3 repeated as node 4, LS-DYNA's default for
 //    formulation 2 without ESORT): A and the summed B of the repeated node are the constant-strain
 //    triangle's, and every hourglass increment vanishes (three nodes carry only linear fields).
@@ -94,6 +115,7 @@ struct ShellSection {
     double hourglass_membrane = 0.01;   // r_m
     double hourglass_bending = 0.01;    // r_theta
     double hourglass_transverse = 0.01; // r_w
+    double drilling = 1e-3;             // r_d (0: no drilling stiffness, LS-DYNA's formulation 2)
     /// InputError naming `owner` when t <= 0, kappa <= 0 or a coefficient < 0 (or not finite).
     void validate(const char* owner) const;
 };
@@ -104,7 +126,7 @@ struct Constants {
     double c11 = 0, c12 = 0;  // plane-stress E / (1 - nu^2), nu E / (1 - nu^2); c33 = G
     double kappa_G = 0;       // transverse shear modulus kappa G
     double t = 0;             // thickness
-    double r_m = 0, r_theta = 0, r_w = 0;
+    double r_m = 0, r_theta = 0, r_w = 0, r_d = 0;
     static Constants from(const ElasticMaterial& m, const ShellSection& s);
 };
 
@@ -115,6 +137,7 @@ struct Frame {
     std::array<double, 4> b1{}, b2{};  // B_1I, B_2I [1/m]
     std::array<double, 4> gamma{};     // hourglass vector
     std::array<double, 4> warp{};      // z^_I: the nodes' offsets from the frame's plane (z_w h_I)
+    double gxx = 0, gyy = 0, gxy = 0;  // sum_I gamma_I x^_I^2, gamma_I y^_I^2, gamma_I x^_I y^_I [m^2]
     double bb = 0.0;              // sum_I B_1I^2 + B_2I^2 [1/m^2]
 };
 /// Frame at nodes x. area <= 0 (or not finite) when the element is degenerate; the operators are
@@ -127,12 +150,13 @@ struct State {
     double sigma[kPoints][3] = {};  // sigma_xx, sigma_yy, sigma_xy per point [Pa]
     double tau[2] = {};             // tau_xz, tau_yz [Pa] (constant through the thickness)
     double hourglass[5] = {};       // Q: moments about x^, y^ [N m]; forces along z^, x^, y^ [N]
+    double drilling[4] = {};        // drilling moments m^z_I [N m]
 };
 
 struct Result {
     std::array<Vec3, 4> force, moment;   // internal (resisting) nodal forces and moments, global
     double strain_energy = 0.0;          // elastic, hourglass excluded [J]
-    double hourglass_energy = 0.0;       // [J]
+    double hourglass_energy = 0.0;       // hourglass and drilling stabilization [J]
     std::array<double, kPoints> von_mises_sq{};  // squared von Mises stress at bottom, mid, top [Pa^2]
     bool bad = false;                    // degenerate or non-finite: outputs meaningless
 };
@@ -174,7 +198,7 @@ LumpedMass lumped_mass(const Constants& c, const std::array<Vec3, 4>& X, bool tr
 /// for the element's nodes) for which no rotational row of the element's Gershgorin bound on
 /// omega^2 (transverse shear, bending and bending-hourglass rows against J, shear coupling to the
 /// translations against sqrt(J m)) exceeds (2 / dt)^2, dt the element's Table 2-1 step; never below
-/// the physical rho t^3/12 A/n. For a thin square element of side a this is m a^2 / y^2 (m = rho t
+/// the physical rho t^3/12 A/n (the drilling row, k_d against J, is checked too). For a thin square element of side a this is m a^2 / y^2 (m = rho t
 /// a^2 / 4 the nodal mass) with kappa G / E (y^2 + 2 y) = 4 / (1 - nu^2): m a^2 / 8.04 at nu = 0.3,
 /// m a^2 / 7.76 at nu = 0.28. The rotary inertia grows with the element area, not with t^2 (the
 /// physical m t^2 / 12), so the step stays Table 2-1's membrane value.

@@ -61,9 +61,10 @@ Mat3 plane_stress(const Mat3& eps, const Vec3& n, const ElasticMaterial& m) {
 }  // namespace
 
 // Membrane patch test (small strain): on the reference frames, the increments of a linear
-// displacement field u = H X must give every element the same stress C eps(H) at every point through
-// the thickness, no hourglass resultant, and zero net force at the four interior nodes (the forces
-// of a constant stress balance). The patch lies in an oblique plane.
+// displacement field u = H X (nodes turned by its skew part) must give every element the same
+// stress C eps(H) at every point through the thickness, no hourglass or drilling resultant, and zero
+// net force and moment at the four interior nodes (the forces of a constant stress balance). The
+// patch lies in an oblique plane.
 TEST(ShellBtKernel, MembranePatchTestOnDistortedObliquePatchIsExact) {
     const Mat3 Q = rotation(0.7, Vec3(1, -2, 0.5));
     const Vec3 n = Q.col(2);
@@ -79,15 +80,19 @@ TEST(ShellBtKernel, MembranePatchTestOnDistortedObliquePatchIsExact) {
     for (const auto& q : p.quads) {
         const auto X = element_nodes(p.nodes, q);
         const Frame fr = make_frame(X);
+        // The nodes turn with the field's rotation (its skew part), as they would in a mesh.
+        const Mat3 W = 0.5 * (H - H.transpose());
         std::array<Vec3, 4> du, dth;
         for (int a = 0; a < 4; ++a) {
             du[a] = H * X[a];
-            dth[a] = Vec3::Zero();
+            dth[a] = Vec3(W(2, 1), W(0, 2), W(1, 0));
         }
         State s;
         update_state(c, fr, du, dth, s);
         for (double hq : s.hourglass)
             EXPECT_NEAR(hq, 0.0, 1e-12 * kSteel.youngs_modulus * sec.thickness * H.norm() * 0.24);
+        for (double md : s.drilling)
+            EXPECT_NEAR(md, 0.0, 1e-12 * kSteel.youngs_modulus * sec.thickness * H.norm() * 0.24 * 0.24);
         for (int k = 0; k < kPoints; ++k) EXPECT_LT((global_stress(fr, s, k) - expected).norm(), 1e-10 * expected.norm());
         EXPECT_NEAR(s.tau[0], 0.0, 1e-10 * expected.norm());
         EXPECT_NEAR(s.tau[1], 0.0, 1e-10 * expected.norm());
@@ -223,16 +228,15 @@ TEST(ShellBtKernel, LargeRigidRotationKeepsStressAndTurnsForces) {
         for (int i = 0; i < 3; ++i) EXPECT_NEAR(free.sigma[p][i], 0.0, 1e-6 * smax);
 }
 
-// Zero-energy modes of the linear stiffness. Element: the six rigid-body modes, the four drilling
-// rotations (no drilling stiffness, as LS-DYNA; independent of the rigid modes, whose rotation
-// about the normal also moves the nodes in the plane), and
-// the one-point shear's rotation mode theta = (x - x_c, y - y_c) (zero curvature, shear zero at
-// the centre only), which is not communicable: neighbouring elements have different centres, so no
-// mesh can assemble it (Belytschko, Tsay and Liu 1981). 11 with hourglass control, and 5 more
-// without it (two membrane, one transverse, two bending hourglass modes). Symmetric. Assembled free
-// flat plate: the rigid modes and one drilling rotation per node only (no spurious mesh mode: the
-// gap to the next eigenvalue is 11 decades).
-TEST(ShellBtKernel, StiffnessHasOnlyRigidDrillingAndNonCommunicableZeroModes) {
+// Zero-energy modes of the linear stiffness. Element, with hourglass control and the drilling
+// penalty: the six rigid-body modes and the one-point shear's rotation mode theta = (x - x_c,
+// y - y_c) (zero curvature, shear zero at the centre only), which is not communicable: neighbouring
+// elements have different centres, so no mesh can assemble it (Belytschko, Tsay and Liu 1981). With
+// neither (formulation 2 as published without hourglass control): 9 more, the four drilling
+// rotations and the five hourglass modes (two membrane, one transverse, two bending). Symmetric.
+// Assembled free flat plate: only the six rigid-body modes with the drilling penalty, and one
+// drilling rotation per node more without it (no spurious mesh mode either way).
+TEST(ShellBtKernel, StiffnessHasOnlyRigidAndNonCommunicableZeroModes) {
     const std::array<Vec3, 4> X{Vec3(0, 0, 0), Vec3(0.02, 0.002, 0), Vec3(0.019, 0.018, 0), Vec3(0.001, 0.016, 0)};
     // Rotations scaled by the element size so that the eigenvalues are comparable.
     auto zero_modes = [](const Eigen::MatrixXd& K, double size) {
@@ -247,11 +251,12 @@ TEST(ShellBtKernel, StiffnessHasOnlyRigidDrillingAndNonCommunicableZeroModes) {
         return zeros;
     };
     for (double r : {0.01, 0.0}) {
-        ShellSection sec{.thickness = 1e-3, .hourglass_membrane = r, .hourglass_bending = r, .hourglass_transverse = r};
+        ShellSection sec{.thickness = 1e-3, .hourglass_membrane = r, .hourglass_bending = r, .hourglass_transverse = r,
+                         .drilling = r > 0 ? 1e-3 : 0.0};
         const Constants c = Constants::from(kSteel, sec);
         const auto K = linear_stiffness(c, X);
         EXPECT_LT((K - K.transpose()).norm(), 1e-12 * K.norm());
-        EXPECT_EQ(zero_modes(K, 0.02), r > 0 ? 11 : 16) << "hourglass coefficient " << r;
+        EXPECT_EQ(zero_modes(K, 0.02), r > 0 ? 7 : 16) << "hourglass coefficient " << r;
         // The six rigid-body modes give no force.
         for (int k = 0; k < 6; ++k) {
             Eigen::Matrix<double, 24, 1> v = Eigen::Matrix<double, 24, 1>::Zero();
@@ -276,22 +281,25 @@ TEST(ShellBtKernel, StiffnessHasOnlyRigidDrillingAndNonCommunicableZeroModes) {
         }
         EXPECT_LT((K * v).norm(), 1e-9 * K.norm() * v.norm() * 0.02);
     }
-    // A free flat 3 x 3 plate of distorted elements: 16 nodes, 6 + 16 = 22 zero modes.
+    // A free flat 3 x 3 plate of distorted elements, 16 nodes: 6 zero modes, 6 + 16 = 22 without
+    // the drilling penalty.
     std::vector<Vec3> nodes;
     for (int j = 0; j <= 3; ++j)
         for (int i = 0; i <= 3; ++i)
             nodes.emplace_back(0.01 * i + 0.002 * ((i * j) % 2), 0.01 * j + 0.0015 * (((i + 2) * j) % 3 == 1), 0.0);
-    Eigen::MatrixXd K = Eigen::MatrixXd::Zero(6 * 16, 6 * 16);
-    const Constants c = Constants::from(kSteel, {.thickness = 1e-3});
-    for (int j = 0; j < 3; ++j)
-        for (int i = 0; i < 3; ++i) {
-            const int a = 4 * j + i;
-            const std::array<int, 4> q{a, a + 1, a + 5, a + 4};
-            const auto Ke = linear_stiffness(c, {nodes[q[0]], nodes[q[1]], nodes[q[2]], nodes[q[3]]});
-            for (int I = 0; I < 4; ++I)
-                for (int J = 0; J < 4; ++J) K.block<6, 6>(6 * q[I], 6 * q[J]) += Ke.block<6, 6>(6 * I, 6 * J);
-        }
-    EXPECT_EQ(zero_modes(K, 0.01), 22);
+    for (double drilling : {1e-3, 0.0}) {
+        Eigen::MatrixXd K = Eigen::MatrixXd::Zero(6 * 16, 6 * 16);
+        const Constants c = Constants::from(kSteel, {.thickness = 1e-3, .drilling = drilling});
+        for (int j = 0; j < 3; ++j)
+            for (int i = 0; i < 3; ++i) {
+                const int a = 4 * j + i;
+                const std::array<int, 4> q{a, a + 1, a + 5, a + 4};
+                const auto Ke = linear_stiffness(c, {nodes[q[0]], nodes[q[1]], nodes[q[2]], nodes[q[3]]});
+                for (int I = 0; I < 4; ++I)
+                    for (int J = 0; J < 4; ++J) K.block<6, 6>(6 * q[I], 6 * q[J]) += Ke.block<6, 6>(6 * I, 6 * J);
+            }
+        EXPECT_EQ(zero_modes(K, 0.01), drilling > 0 ? 6 : 22) << "drilling " << drilling;
+    }
 }
 
 // Triangles as degenerate quadrilaterals: the constant-strain triangle's membrane stress for a
