@@ -62,12 +62,32 @@ Frame make_frame(const std::array<Vec3, 4>& x) {
     f.E.col(1) = e2;
     f.E.col(2) = e3;
     const Vec3 c = 0.25 * (x[0] + x[1] + x[2] + x[3]);
-    double px[4], py[4];
+    auto& px = f.px;
+    auto& py = f.py;
     for (int I = 0; I < 4; ++I) {
         const Vec3 d = x[I] - c;
         px[I] = e1.dot(d);
         py[I] = e2.dot(d);
         f.warp[I] = e3.dot(d);
+    }
+    f.triangle = (x[3] - x[2]).squaredNorm() == 0.0;
+    if (f.triangle) {
+        // MITC3 fit of the transverse shear to the three edges' tangential strains: at edge e's
+        // midpoint m, s . (a1 + c y, a2 - c x) = sx a1 + sy a2 + c (sx y_m - sy x_m) = e_s(e).
+        const double xc = (px[0] + px[1] + px[2]) / 3, yc = (py[0] + py[1] + py[2]) / 3;
+        Mat3 T;
+        for (int e = 0; e < 3; ++e) {
+            const int i = e, j = (e + 1) % 3;
+            const double dx = px[j] - px[i], dy = py[j] - py[i];
+            f.len[e] = std::sqrt(dx * dx + dy * dy);
+            f.sx[e] = dx / f.len[e];
+            f.sy[e] = dy / f.len[e];
+            const double xm = 0.5 * (px[i] + px[j]) - xc, ym = 0.5 * (py[i] + py[j]) - yc;
+            T.row(e) << f.sx[e], f.sy[e], f.sx[e] * ym - f.sy[e] * xm;
+        }
+        const Mat3 Ti = T.inverse();
+        for (int r = 0; r < 2; ++r)
+            for (int e = 0; e < 3; ++e) f.shear[r][e] = Ti(r, e);
     }
     const double inv = 1.0 / (2.0 * f.area);
     f.b1 = {(py[1] - py[3]) * inv, (py[2] - py[0]) * inv, (py[3] - py[1]) * inv, (py[0] - py[2]) * inv};
@@ -156,8 +176,20 @@ void update_state(const Constants& c, const Frame& mid, const std::array<Vec3, 4
         q[3] += gm * u[I][0];
         q[4] += gm * u[I][1];
     }
-    g[0] += 0.25 * sum_thy;
-    g[1] -= 0.25 * sum_thx;
+    if (mid.triangle) {
+        // Edge-based (MITC3) shear at the centroid instead of the one-point value (header).
+        g[0] = g[1] = 0.0;
+        for (int e = 0; e < 3; ++e) {
+            const int i = e, j = (e + 1) % 3;
+            const double es = (u[j][2] - u[i][2]) / mid.len[e] +
+                              0.5 * (mid.sx[e] * (th[i][1] + th[j][1]) - mid.sy[e] * (th[i][0] + th[j][0]));
+            g[0] += mid.shear[0][e] * es;
+            g[1] += mid.shear[1][e] * es;
+        }
+    } else {
+        g[0] += 0.25 * sum_thy;
+        g[1] -= 0.25 * sum_thx;
+    }
     // Transverse hourglass relative to the w the rotation gradients imply (header).
     {
         double b1tx = 0, b1ty = 0, b2tx = 0, b2ty = 0;
@@ -218,12 +250,30 @@ void forces(const Constants& c, const Frame& f, const State& st, Result& out) {
         const double kd = drilling_stiffness(c, f);
         for (int I = 0; I < 4; ++I) out.hourglass_energy += 0.5 * st.drilling[I] * st.drilling[I] / kd;
     }
+    // Transverse shear: one-point (quadrilaterals: f^z = A B Q, moments A Q / 4 below), or the
+    // conjugates of the triangle's edge strains (shear forces and moments per node, local).
+    const double shear_share = f.triangle ? 0.0 : 0.25;
+    double tz[4] = {0, 0, 0, 0}, tmx[4] = {0, 0, 0, 0}, tmy[4] = {0, 0, 0, 0};
+    if (f.triangle) {
+        for (int e = 0; e < 3; ++e) {
+            const int i = e, j = (e + 1) % 3;
+            const double Fe = A * (Qx * f.shear[0][e] + Qy * f.shear[1][e]);
+            tz[j] += Fe / f.len[e];
+            tz[i] -= Fe / f.len[e];
+            for (int k : {i, j}) {
+                tmy[k] += 0.5 * Fe * f.sx[e];
+                tmx[k] -= 0.5 * Fe * f.sy[e];
+            }
+        }
+    } else {
+        for (int I = 0; I < 4; ++I) tz[I] = A * (f.b1[I] * Qx + f.b2[I] * Qy);
+    }
     Vec3 fl[4];
     double sx = 0.0, sy = 0.0;  // sum_I z^_I f^x_I, sum_I z^_I f^y_I (warping correction)
     for (int I = 0; I < 4; ++I) {
         const double b1 = f.b1[I], b2 = f.b2[I], gm = f.gamma[I];
         fl[I] = Vec3(A * (b1 * N[0] + b2 * N[2]) + gm * Q[3] + b2 * md, A * (b2 * N[1] + b1 * N[2]) + gm * Q[4] - b1 * md,
-                     A * (b1 * Qx + b2 * Qy) + gm * Q[2]);
+                     tz[I] + gm * Q[2]);
         sx += f.warp[I] * fl[I].x();
         sy += f.warp[I] * fl[I].y();
     }
@@ -232,8 +282,10 @@ void forces(const Constants& c, const Frame& f, const State& st, Result& out) {
         fl[I].z() += b1 * sx + b2 * sy;
         // Moments: bending, shear, bending hourglass, and the rotation part of the transverse
         // hourglass (conjugate of its theta terms).
-        const Vec3 ml(-A * (b2 * M[1] + b1 * M[2] + 0.25 * Qy) + gm * Q[0] - 0.5 * Q[2] * (b2 * f.gyy + b1 * f.gxy),
-                      A * (b1 * M[0] + b2 * M[2] + 0.25 * Qx) + gm * Q[1] + 0.5 * Q[2] * (b1 * f.gxx + b2 * f.gxy),
+        const Vec3 ml(-A * (b2 * M[1] + b1 * M[2] + shear_share * Qy) + tmx[I] + gm * Q[0] -
+                          0.5 * Q[2] * (b2 * f.gyy + b1 * f.gxy),
+                      A * (b1 * M[0] + b2 * M[2] + shear_share * Qx) + tmy[I] + gm * Q[1] +
+                          0.5 * Q[2] * (b1 * f.gxx + b2 * f.gxy),
                       st.drilling[I]);
         out.force[I] = f.E * fl[I];
         out.moment[I] = f.E * ml;
@@ -287,8 +339,9 @@ double critical_time_step(const ElasticMaterial& m, const std::array<Vec3, 4>& x
 }
 
 double rotational_inertia(const Constants& c, const Frame& f, double m, double table_dt, bool triangle) {
-    // Distinct nodes: a triangle's repeated node 3 joins node 2 (its B and gamma summed, its share
-    // of the one-point shear 1/2).
+    // Distinct nodes: a triangle's repeated node 3 joins node 2 (its B and gamma summed); a node's
+    // share of the rotation in the transverse shear: 1/4 (one point), about 1/3 in a triangle's
+    // edge-based shear (the kernel test checks the resulting bound with the exact stiffness).
     const int n = triangle ? 3 : 4;
     double b1[4], b2[4], gm[4], share[4];
     for (int a = 0; a < 4; ++a) {
@@ -301,7 +354,8 @@ double rotational_inertia(const Constants& c, const Frame& f, double m, double t
         b1[2] += b1[3];
         b2[2] += b2[3];
         gm[2] += gm[3];
-        share[2] = 0.5;
+        // The edge-based shear weighs the nodes' rotations about equally.
+        share[0] = share[1] = share[2] = 1.0 / 3.0;
     }
     double sum_b = 0.0, sum_b1 = 0.0, sum_b2 = 0.0, sum_g = 0.0;
     for (int a = 0; a < n; ++a) {

@@ -88,9 +88,18 @@
 //    g_ab = sum_I gamma_I a^_I b^_I; its conjugate moments go to the nodal rotations. It still
 //    resists the w-hourglass (w = h, theta = 0) fully and vanishes for every bending and twisting
 //    mode and every rigid motion (tests).
-//  * Triangles: degenerate quadrilaterals (node 3 repeated as node 4, LS-DYNA's default for
-//    formulation 2 without ESORT): A and the summed B of the repeated node are the constant-strain
-//    triangle's, and every hourglass increment vanishes (three nodes carry only linear fields).
+//  * Triangles: stored as degenerate quadrilaterals (node 3 repeated as node 4): A and the summed B
+//    of the repeated node are the constant-strain triangle's (membrane and curvature), and every
+//    hourglass increment vanishes (three nodes carry only linear fields). The one-point shear of the
+//    degenerate quadrilateral (LS-DYNA's formulation 2 without ESORT) locks: a cantilever strip of
+//    such triangles deflected 93 % too little with 8 x 2 x 2 triangles, 45 % with 32 x 2 x 2 (test
+//    ShellBtStatics.TriangleCantilever...). So triangles take their transverse shear from the
+//    tangential shear strains of their three edges, e_s = (w_j - w_i) / l + s_x thbar^y - s_y
+//    thbar^x (thbar the edge's mean rotation: zero for every Kirchhoff bending and twisting mode,
+//    because a quadratic w's secant slope is its mid-edge slope), fitted by the MITC3 field g_xz =
+//    a1 + c y, g_yz = a2 - c x (Lee and Bathe 2004) and taken at the centroid, (a1, a2); the
+//    nodal forces and moments are its conjugates. This stands in for LS-DYNA's C0 triangle
+//    (ESORT = 1), which the degenerate quadrilateral is not fit to replace.
 //    Lumped mass rho t A / 3 per node (not the quadrilateral's 1/4, 1/4, 1/2).
 //
 // Energies: the stored elastic energy A sum_k w_k sigma_k . C^-1 sigma_k / 2 + A t tau . tau /
@@ -138,6 +147,12 @@ struct Frame {
     std::array<double, 4> gamma{};     // hourglass vector
     std::array<double, 4> warp{};      // z^_I: the nodes' offsets from the frame's plane (z_w h_I)
     double gxx = 0, gyy = 0, gxy = 0;  // sum_I gamma_I x^_I^2, gamma_I y^_I^2, gamma_I x^_I y^_I [m^2]
+    std::array<double, 4> px{}, py{};  // x^_I, y^_I (about the centroid)
+    bool triangle = false;             // node 3 coincides with node 2 (a triangle)
+    // Triangles: edge e (nodes e, e+1 mod 3) unit tangent (sx, sy), length, and the centroid shear
+    // (a1, a2) = sum_e shear[e] * e_s(e) of the MITC3 fit (rows 0, 1 of its inverse).
+    std::array<double, 3> sx{}, sy{}, len{};
+    std::array<std::array<double, 3>, 2> shear{};
     double bb = 0.0;              // sum_I B_1I^2 + B_2I^2 [1/m^2]
 };
 /// Frame at nodes x. area <= 0 (or not finite) when the element is degenerate; the operators are

@@ -49,4 +49,22 @@ inline Eigen::VectorXd dense_eigenvalues(const DenseShellSystem& s, const std::v
     return eig.eigenvalues();
 }
 
+/// The quad mesh (one block) with every quadrilateral split into two triangles along alternating
+/// diagonals; nodes and node sets kept.
+inline Mesh split_into_triangles(const Mesh& quads) {
+    Mesh m;
+    m.nodes = quads.nodes;
+    m.node_sets = quads.node_sets;
+    ElementBlock tri{quads.blocks[0].part, ElementShape::Tri3, {}};
+    for (int e = 0; e < quads.blocks[0].size(); ++e) {
+        const auto q = quads.blocks[0].element(e);
+        const int a[3] = {q[0], q[1], q[2]}, b[3] = {q[0], q[2], q[3]};
+        const int c[3] = {q[0], q[1], q[3]}, d[3] = {q[1], q[2], q[3]};
+        tri.add(e % 2 == 0 ? a : c);
+        tri.add(e % 2 == 0 ? b : d);
+    }
+    m.blocks.push_back(tri);
+    return m;
+}
+
 }  // namespace fem::test

@@ -3,6 +3,7 @@
 // spinning without strain, determinism on 1 and 2 threads, and the VTU surface stresses.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -60,6 +61,8 @@ TEST(ShellBtStability, MeasuredFactorMakesTheTableStepABound) {
     for (auto& p : skew.nodes) p.x() += 0.3 * p.y() + 0.002 * std::sin(300 * p.y());
     cases.push_back({"free skewed 6x6", skew, false});
     cases.push_back({"free saddle 6x6", saddle(0.06, 3.0, 6), false});
+    cases.push_back({"free triangles 1", test::split_into_triangles(rectangle_quads(0.01, 0.01, 1, 1)), false});
+    cases.push_back({"free triangles 4x4", test::split_into_triangles(rectangle_quads(0.04, 0.04, 4, 4)), false});
     for (const auto& cs : cases) {
         ShellGroup g(cs.mesh, 0, kSteel, {.thickness = 1e-3});
         const auto sys = test::dense_shell_system(cs.mesh, g);
@@ -70,7 +73,9 @@ TEST(ShellBtStability, MeasuredFactorMakesTheTableStepABound) {
                 for (int d = 0; d < 6; ++d) fixed[6 * node + d] = true;
         const double w = std::sqrt(test::dense_eigenvalues(sys, fixed).maxCoeff());
         const double w_measured = g.measure_omega_max();
-        EXPECT_NEAR(w_measured, w_free, 1e-5 * w_free) << cs.name;
+        // The measurement is an upper bound within its Lanczos tolerance (1e-4 on omega^2).
+        EXPECT_GE(w_measured, w_free * (1 - 1e-9)) << cs.name;
+        EXPECT_LT(w_measured, w_free * (1 + 1e-4)) << cs.name;
         double dt = 1e300;
         for (double d : g.reference_time_steps()) dt = std::min(dt, d);
         const double factor = std::min(1.0, (2 / w_measured) / dt);
@@ -237,4 +242,35 @@ TEST(ShellBtOutput, SurfaceStressesInVtuAndPartMaximum) {
     for (const char* name : {"von_mises_bottom", "von_mises_mid", "von_mises_top"})
         EXPECT_NE(text.find(name), std::string::npos) << name;
     fs::remove_all(dir);
+}
+
+// Energy balance with external work, no damping: a cantilever plate hit by a sudden tip force
+// (bending and twisting: the force acts at one tip corner) vibrates freely; kinetic + internal +
+// hourglass energy equals the work of the force at every cycle (the solver's balance, to 1e-4 of
+// the work; measured 5e-9), and the hourglass energy stays below 1 % of the largest internal energy
+// (measured 1.1e-4; HG / IE at the same instant only peaks when the plate swings through its
+// undeformed shape, where IE passes near zero).
+TEST(ShellBtEnergy, SuddenCornerLoadBalancesExternalWork) {
+    Mesh mesh = rectangle_quads(0.1, 0.02, 20, 4, ElementShape::Quad4, "plate");
+    ExplicitModel model(mesh);
+    model.add_shells("plate", kSteel, {.thickness = 2e-3});
+    model.fix(mesh.node_set("x0"), Dofs::all());
+    int corner = -1;
+    for (int i = 0; i < mesh.node_count(); ++i)
+        if ((mesh.nodes[i] - Vec3(0.1, 0.02, 0)).norm() < 1e-9) corner = i;
+    model.add_nodal_force({corner}, Vec3(0, 0, 1.0));
+    ExplicitOptions o = quiet(6e-3);  // about one period of the first mode
+    o.history_interval = 1e-5;
+    ExplicitSolver solver(model, o);
+    const RunSummary sum = solver.run();
+    const auto& h = solver.history();
+    const double max_hg = *std::max_element(h.hourglass.begin(), h.hourglass.end()) /
+                          *std::max_element(h.internal.begin(), h.internal.end());
+    std::printf("sudden corner load: external work %.4e J, KE %.3e, IE %.3e, HG %.2e J, balance error %.2e, max "
+                "HG / max IE %.2e\n",
+                sum.energy.external, sum.energy.kinetic, sum.energy.internal, sum.energy.hourglass,
+                sum.energy.relative_error(), max_hg);
+    EXPECT_GT(sum.energy.external, 0.0);
+    EXPECT_LT(sum.energy.relative_error(), 1e-4);
+    EXPECT_LT(max_hg, 0.01);
 }

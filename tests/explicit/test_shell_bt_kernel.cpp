@@ -303,8 +303,8 @@ TEST(ShellBtKernel, StiffnessHasOnlyRigidAndNonCommunicableZeroModes) {
 }
 
 // Triangles as degenerate quadrilaterals: the constant-strain triangle's membrane stress for a
-// linear field, no hourglass resultant whatever the nodal motion, mass rho t A / 3 per node and the
-// Table 2-1 triangle step.
+// linear field, no hourglass resultant whatever the nodal motion, mass rho t A / 3 per node, the
+// Table 2-1 triangle step, and only the rigid-body modes at zero energy.
 TEST(ShellBtKernel, DegenerateTriangleIsTheConstantStrainTriangle) {
     const Constants c = Constants::from(kSteel, {.thickness = 1e-3});
     const std::array<Vec3, 4> X{Vec3(0, 0, 0), Vec3(0.01, 0, 0), Vec3(0.003, 0.008, 0), Vec3(0.003, 0.008, 0)};
@@ -335,6 +335,58 @@ TEST(ShellBtKernel, DegenerateTriangleIsTheConstantStrainTriangle) {
     const std::array<Vec3, 3> tri{X[0], X[1], X[2]};
     EXPECT_DOUBLE_EQ(critical_time_step(kSteel, X, true),
                      cfl::triangle_shell_length(tri) / plate_wave_speed(kSteel));
+    // Zero-energy modes of the triangle (repeated node folded in): the six rigid-body modes and, as
+    // for the quadrilateral, the non-communicable rotation mode theta = (x - x_c, y - y_c) (the
+    // rotational part c of the MITC3 shear field, zero at the centroid); none in a mesh (below).
+    const auto K = linear_stiffness(c, X);
+    Eigen::Matrix<double, 18, 18> Kt = Eigen::Matrix<double, 18, 18>::Zero();
+    for (int I = 0; I < 4; ++I)
+        for (int J = 0; J < 4; ++J) Kt.block<6, 6>(6 * std::min(I, 2), 6 * std::min(J, 2)) += K.block<6, 6>(6 * I, 6 * J);
+    EXPECT_LT((Kt - Kt.transpose()).norm(), 1e-12 * Kt.norm());
+    Eigen::Matrix<double, 18, 1> sc = Eigen::Matrix<double, 18, 1>::Ones();
+    for (int i = 0; i < 18; ++i)
+        if (i % 6 >= 3) sc[i] = 1.0 / 0.01;
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 18, 18>> eig(sc.asDiagonal() * Kt * sc.asDiagonal());
+    int zeros = 0;
+    for (int i = 0; i < 18; ++i) zeros += std::abs(eig.eigenvalues()[i]) < 1e-10 * eig.eigenvalues()[17];
+    EXPECT_EQ(zeros, 7);
+    for (int k = 3; k < 6; ++k) {  // rigid rotations
+        Eigen::Matrix<double, 18, 1> v;
+        for (int I = 0; I < 3; ++I) {
+            const Vec3 w = Vec3::Unit(k - 3);
+            v.segment<3>(6 * I) = w.cross(X[I]);
+            v.segment<3>(6 * I + 3) = w;
+        }
+        EXPECT_LT((Kt * v).norm(), 1e-9 * Kt.norm() * v.norm()) << "rigid rotation " << k - 3;
+    }
+    // A free mesh of 8 triangles (a 2 x 2 square split along alternating diagonals, 9 nodes): the
+    // six rigid-body modes only.
+    std::vector<Vec3> nodes;
+    for (int j = 0; j <= 2; ++j)
+        for (int i = 0; i <= 2; ++i) nodes.emplace_back(0.01 * i, 0.01 * j, 0.0);
+    Eigen::MatrixXd Km = Eigen::MatrixXd::Zero(54, 54);
+    for (int j = 0; j < 2; ++j)
+        for (int i = 0; i < 2; ++i) {
+            const int a = 3 * j + i;
+            const int q[4] = {a, a + 1, a + 4, a + 3};
+            const std::array<std::array<int, 3>, 2> tris =
+                (i + j) % 2 ? std::array<std::array<int, 3>, 2>{{{q[0], q[1], q[2]}, {q[0], q[2], q[3]}}}
+                            : std::array<std::array<int, 3>, 2>{{{q[0], q[1], q[3]}, {q[1], q[2], q[3]}}};
+            for (const auto& tr : tris) {
+                const int cn[4] = {tr[0], tr[1], tr[2], tr[2]};
+                const auto Ke = linear_stiffness(c, {nodes[cn[0]], nodes[cn[1]], nodes[cn[2]], nodes[cn[3]]});
+                for (int I = 0; I < 4; ++I)
+                    for (int J = 0; J < 4; ++J) Km.block<6, 6>(6 * cn[I], 6 * cn[J]) += Ke.block<6, 6>(6 * I, 6 * J);
+            }
+        }
+    Eigen::VectorXd scm = Eigen::VectorXd::Ones(54);
+    for (int i = 0; i < 54; ++i)
+        if (i % 6 >= 3) scm[i] = 1.0 / 0.01;
+    const Eigen::MatrixXd Ks = scm.asDiagonal() * (0.5 * (Km + Km.transpose())) * scm.asDiagonal();
+    Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig_m(Ks);
+    int zeros_m = 0;
+    for (int i = 0; i < 54; ++i) zeros_m += std::abs(eig_m.eigenvalues()[i]) < 1e-10 * eig_m.eigenvalues()[53];
+    EXPECT_EQ(zeros_m, 6);
 }
 
 // Rotational inertia scaling: on a thin square element the scaled inertia is m a^2 / 8.04 (the

@@ -62,8 +62,9 @@ Curve ramp_curve(double omega1) { return Curve({{0.0, 0.0}, {kPi / omega1, 1.0}}
 // Cantilever strip L x b x t = 100 x 10 x 1 mm, nu = 0 (so that beam theory holds exactly: no
 // anticlastic curvature and no clamping effect at the root), tip load P = 0.01 N spread over the tip
 // nodes (deflection 0.02 t: linear). Beam theory with shear: w = P L^3 / (3 E I) + P L / (kappa G b
-// t). nx = 4, 8, 16, 32 elements along, 2 across: the error must fall with the mesh (one-point
-// elements converge as h^2) and be below 0.5 % on the finest mesh.
+// t). nx = 4, 8, 16 elements along, 2 across: the error must fall with the mesh (one-point
+// elements converge as h^2: measured -1.564, -0.391, -0.098 %, and -0.025 % at nx = 32) and be below
+// 0.2 % on the finest.
 TEST(ShellBtStatics, CantileverStripMatchesBeamTheory) {
     const ElasticMaterial mat = ElasticMaterial::make("steel nu=0", 210e9, 0.0, 7700);
     const double L = 0.1, b = 0.01, t = 1e-3, P = 0.01;
@@ -71,7 +72,7 @@ TEST(ShellBtStatics, CantileverStripMatchesBeamTheory) {
     const double w_beam = P * L * L * L / (3 * mat.youngs_modulus * I) + P * L / (5.0 / 6.0 * mat.shear_modulus() * b * t);
     const double omega1 = 1.8751 * 1.8751 * std::sqrt(mat.youngs_modulus * I / (mat.density * b * t * L * L * L * L));
     double previous = 1e300;
-    for (int nx : {4, 8, 16, 32}) {
+    for (int nx : {4, 8, 16}) {
         const int ny = 2;
         Mesh mesh = rectangle_quads(L, b, nx, ny, ElementShape::Quad4, "strip");
         ExplicitModel model(mesh);
@@ -95,7 +96,7 @@ TEST(ShellBtStatics, CantileverStripMatchesBeamTheory) {
         EXPECT_LT(r.ke_over_ie, 1e-6);
         EXPECT_LT(std::abs(err), previous);
         previous = std::abs(err);
-        if (nx == 32) EXPECT_LT(std::abs(err), 5e-3);
+        if (nx == 16) EXPECT_LT(std::abs(err), 2e-3);
         EXPECT_LT(r.max_hg_over_ie, 1e-3);  // uniform bending excites no hourglass mode
     }
 }
@@ -193,5 +194,205 @@ TEST(ShellBtStatics, SquarePlatesMatchTimoshenko) {
             previous = std::abs(err);
             EXPECT_LT(r.max_hg_over_ie, 0.01) << cs.name << " n " << n;
         }
+    }
+}
+
+namespace {
+// Out-of-plane modes (kinetic energy mostly in w) of a dense eigensolution, ascending: frequencies
+// [rad/s] and shapes (6 DOFs per node, zero on fixed DOFs).
+struct Modes {
+    std::vector<double> omega;
+    std::vector<Eigen::VectorXd> shape;
+};
+Modes out_of_plane_modes(const test::DenseShellSystem& s, const std::vector<bool>& fixed, int count) {
+    std::vector<int> free;
+    for (int i = 0; i < static_cast<int>(fixed.size()); ++i)
+        if (!fixed[i]) free.push_back(i);
+    const int n = static_cast<int>(free.size());
+    Eigen::MatrixXd A(n, n);
+    for (int a = 0; a < n; ++a)
+        for (int b = 0; b < n; ++b)
+            A(a, b) = 0.5 * (s.K(free[a], free[b]) + s.K(free[b], free[a])) / std::sqrt(s.mass[free[a]] * s.mass[free[b]]);
+    Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(A);
+    Modes m;
+    for (int k = 0; k < n && static_cast<int>(m.omega.size()) < count; ++k) {
+        Eigen::VectorXd phi = Eigen::VectorXd::Zero(fixed.size());
+        for (int a = 0; a < n; ++a) phi[free[a]] = eig.eigenvectors()(a, k) / std::sqrt(s.mass[free[a]]);
+        double ew = 0, etot = 0;  // kinetic energy shares
+        for (int i = 0; i < phi.size(); ++i) {
+            etot += s.mass[i] * phi[i] * phi[i];
+            if (i % 6 == 2) ew += s.mass[i] * phi[i] * phi[i];
+        }
+        if (ew > 0.5 * etot && eig.eigenvalues()[k] > 0) {
+            m.omega.push_back(std::sqrt(eig.eigenvalues()[k]));
+            m.shape.push_back(phi);
+        }
+    }
+    return m;
+}
+
+// Frequency of a free vibration started with velocity = mode shape (small amplitude): the modal
+// coordinate q(t) = sum_i m_i phi_i u_i over the translations, its upward zero crossings (linear
+// interpolation) over `periods` periods.
+double explicit_frequency(const Mesh& mesh, const ElasticMaterial& mat, const ShellOptions& sec,
+                          const std::vector<int>& clamped, const Eigen::VectorXd& phi, double omega_guess,
+                          double periods) {
+    ExplicitModel model(mesh);
+    model.add_shells(mesh.blocks[0].part, mat, sec);
+    model.fix(clamped, Dofs::all());
+    const double scale = 1e-3 / phi.cwiseAbs().maxCoeff();  // 1 mm/s peak
+    std::vector<Vec3> v(mesh.node_count());
+    for (int i = 0; i < mesh.node_count(); ++i) {
+        v[i] = scale * phi.segment<3>(6 * i);
+        model.set_initial_angular_velocity({i}, scale * phi.segment<3>(6 * i + 3));
+    }
+    model.set_initial_velocity([&](const Vec3& X) {
+        for (int i = 0; i < mesh.node_count(); ++i)
+            if (mesh.nodes[i] == X) return v[i];
+        return Vec3(Vec3::Zero());
+    });
+    ExplicitSolver solver(model, quiet(periods * 2 * kPi / omega_guess));
+    std::vector<double> t, q;
+    solver.observer = [&](const ExplicitSolver& s) {
+        double sum = 0;
+        for (int i = 0; i < mesh.node_count(); ++i)
+            sum += s.state().mass[i] * phi.segment<3>(6 * i).dot(s.state().x[i] - s.state().X[i]);
+        t.push_back(s.time());
+        q.push_back(sum);
+    };
+    solver.run();
+    std::vector<double> up;
+    for (std::size_t k = 1; k < q.size(); ++k)
+        if (q[k - 1] < 0 && q[k] >= 0) up.push_back(t[k - 1] + (t[k] - t[k - 1]) * (-q[k - 1]) / (q[k] - q[k - 1]));
+    if (up.size() < 2) return 0.0;
+    return 2 * kPi * (up.size() - 1) / (up.back() - up.front());
+}
+}  // namespace
+
+// Free vibration of a cantilever plate 100 x 20 x 2 mm (steel, nu = 0.28), 20 x 4 elements:
+//  * explicit runs started in each of the first three out-of-plane modes of the linearized BT model
+//    (first bending, second bending, first torsion) oscillate at its eigenfrequencies (0.1 %: the
+//    central-difference period error (omega dt)^2 / 24 is ~1e-6; the rest is the zero-crossing
+//    timing and the small amplitude's nonlinearity);
+//  * against MITC4 (lib/assembly + lib/modal, lumped mass, the same mesh): bending within 1 %
+//    (measured -0.3 %, -0.9 %); torsion 6.9 % lower. Most of that is the scaled rotary inertia of
+//    the explicit model (shellbt::rotational_inertia, J = 0.129 m a^2 per node instead of the
+//    physical m t^2 / 12): the five nodes across the width add 0.645 rho t a^3 per unit length to
+//    the strip's polar inertia rho t b^3 / 12, +12 % with four elements across, -5.5 % in
+//    frequency; it falls as (a/b)^2 with the mesh across the width. With the physical rotary
+//    inertia the same BT stiffness is 1.4 % below MITC4 in torsion (the one-point element's
+//    torsional stiffness) and within 0.3 % in bending;
+//  * against the closed forms (Euler-Bernoulli beam with E; St-Venant torsion of a thin strip with
+//    J = b t^3 (1/3 - 0.21 t/b (1 - (t/b)^4/12)), Roark): bending within 2 % (the clamped root
+//    restrains the anticlastic curvature the beam formula ignores), torsion within 2 % for MITC4
+//    and the BT stiffness with physical inertia.
+TEST(ShellBtDynamics, CantileverPlateFrequenciesMatchMitc4AndClosedForms) {
+    const ElasticMaterial mat = ElasticMaterial::make("steel", 210e9, 0.28, 7700);
+    const double L = 0.1, b = 0.02, t = 2e-3;
+    Mesh mesh = rectangle_quads(L, b, 20, 4, ElementShape::Quad4, "plate");
+    const ShellOptions sec{.thickness = t};
+    const auto& clamped = mesh.node_set("x0");
+
+    // BT, linearized, with the explicit model's lumped masses (and with the physical rotary inertia).
+    ShellGroup g(mesh, 0, mat, sec);
+    auto sys = test::dense_shell_system(mesh, g);
+    std::vector<bool> fixed(sys.mass.size(), false);
+    for (int node : clamped)
+        for (int d = 0; d < 6; ++d) fixed[6 * node + d] = true;
+    const Modes bt = out_of_plane_modes(sys, fixed, 3);
+    auto physical = sys;
+    for (int e = 0; e < g.size(); ++e)
+        for (int I = 0; I < 4; ++I)
+            for (int d = 3; d < 6; ++d) physical.mass[6 * g.connectivity(e)[I] + d] = 0.0;
+    for (int e = 0; e < g.size(); ++e)
+        for (int I = 0; I < 4; ++I)
+            for (int d = 3; d < 6; ++d)
+                physical.mass[6 * g.connectivity(e)[I] + d] += g.lumped_mass(e).mass[I] * t * t / 12;
+    const Modes bt_phys = out_of_plane_modes(physical, fixed, 3);
+
+    // MITC4 on the same mesh, lumped mass.
+    Model model(mesh);
+    model.add_shell_part("plate", t, mat, solid::MassKind::Lumped);
+    model.fix_node_set("x0");
+    const auto sysm = model.assemble();
+    const auto mitc = modal::solve_modes(sysm, {.modes = 12});
+    std::vector<double> mitc_w;  // out-of-plane ones: uz dominates the translations
+    for (int k = 0; k < mitc.frequencies_hz.size() && mitc_w.size() < 3; ++k) {
+        const auto u = sysm.translations(mitc.shapes.col(k));
+        double uz = 0, uxy = 0;
+        for (std::size_t i = 0; i < u.size(); i += 3) {
+            uz += u[i + 2] * u[i + 2];
+            uxy += u[i] * u[i] + u[i + 1] * u[i + 1];
+        }
+        if (uz > uxy) mitc_w.push_back(2 * kPi * mitc.frequencies_hz[k]);
+    }
+    ASSERT_EQ(mitc_w.size(), 3u);
+
+    // Closed forms.
+    const double E = mat.youngs_modulus, G = mat.shear_modulus(), rho = mat.density, A = b * t, I = b * t * t * t / 12;
+    const double eb = std::sqrt(E * I / (rho * A * L * L * L * L));
+    const double J = b * t * t * t * (1.0 / 3 - 0.21 * t / b * (1 - std::pow(t / b, 4) / 12));
+    const double closed[3] = {1.875104 * 1.875104 * eb, 4.694091 * 4.694091 * eb,
+                              kPi / (2 * L) * std::sqrt(G * J / (rho * (b * b * b * t + b * t * t * t) / 12))};
+    const char* names[3] = {"1st bending", "2nd bending", "1st torsion"};
+
+    for (int k = 0; k < 3; ++k) {
+        const double w_explicit =
+            explicit_frequency(mesh, mat, sec, clamped, bt.shape[k], bt.omega[k], k == 0 ? 3.0 : 6.0);
+        std::printf("%-12s BT explicit %9.2f rad/s, BT linear %9.2f, BT physical rotary inertia %9.2f, MITC4 %9.2f, "
+                    "closed form %9.2f\n",
+                    names[k], w_explicit, bt.omega[k], bt_phys.omega[k], mitc_w[k], closed[k]);
+        EXPECT_NEAR(w_explicit, bt.omega[k], 1e-3 * bt.omega[k]) << names[k];
+        if (k < 2) {
+            EXPECT_NEAR(bt.omega[k], mitc_w[k], 0.01 * mitc_w[k]) << names[k];
+            EXPECT_NEAR(bt_phys.omega[k], mitc_w[k], 0.01 * mitc_w[k]) << names[k];
+            EXPECT_NEAR(bt.omega[k], closed[k], 0.02 * closed[k]) << names[k];
+        } else {
+            // Torsion: the scaled inertia's share (BT physical vs BT) is the expected ~5.5 %.
+            EXPECT_NEAR(bt.omega[k] / bt_phys.omega[k], 1 / std::sqrt(1.12), 0.01) << names[k];
+            EXPECT_NEAR(bt_phys.omega[k], mitc_w[k], 0.02 * mitc_w[k]) << names[k];
+            EXPECT_NEAR(bt_phys.omega[k], closed[k], 0.02 * closed[k]) << names[k];
+            EXPECT_NEAR(mitc_w[k], closed[k], 0.02 * closed[k]) << names[k];
+        }
+    }
+}
+
+
+// Triangles on the cantilever strip of CantileverStripMatchesBeamTheory, one element across and
+// each quad split in two. As plain degenerate quadrilaterals (one-point shear) they locked: -93 %
+// (nx = 8), -75 % (16), -45 % (32); with the edge-based shear (shell_bt_explicit.hpp): -0.39 %,
+// -0.095 %, -0.021 % (ny = 2), converging as h^2 like the quadrilaterals. Required: the error falls
+// with the mesh, below 0.5 % at nx = 8 and 0.2 % at nx = 16.
+TEST(ShellBtStatics, TriangleCantileverAgainstBeamTheory) {
+    const ElasticMaterial mat = ElasticMaterial::make("steel nu=0", 210e9, 0.0, 7700);
+    const double L = 0.1, b = 0.01, t = 1e-3, P = 0.01;
+    const double I = b * t * t * t / 12;
+    const double w_beam = P * L * L * L / (3 * mat.youngs_modulus * I) + P * L / (5.0 / 6.0 * mat.shear_modulus() * b * t);
+    const double omega1 = 1.8751 * 1.8751 * std::sqrt(mat.youngs_modulus * I / (mat.density * b * t * L * L * L * L));
+    double previous = 1e300;
+    for (int nx : {8, 16}) {
+        const int ny = 1;
+        Mesh mesh = test::split_into_triangles(rectangle_quads(L, b, nx, ny, ElementShape::Quad4, "strip"));
+        ExplicitModel model(mesh);
+        model.add_shells("strip", mat, {.thickness = t});
+        model.fix(mesh.node_set("x0"), Dofs::all());
+        for (int node : mesh.node_set("x1")) {
+            const double y = mesh.nodes[node].y();
+            const double share = (y < 1e-12 || y > b - 1e-12) ? 0.5 / ny : 1.0 / ny;
+            model.add_nodal_force({node}, Vec3(0, 0, P * share), ramp_curve(omega1));
+        }
+        const auto tip = mesh.node_set("x1");
+        const Relaxed r = relax(model, omega1, [&](const ExplicitSolver& s) {
+            double w = 0;
+            for (int node : tip) w += s.state().x[node].z() / tip.size();
+            return w;
+        });
+        const double err = r.w / w_beam - 1;
+        std::printf("triangles nx %2d: w %.6e m (beam %.6e), error %+.3f %%, KE/IE %.1e, %ld steps\n", nx, r.w, w_beam,
+                    100 * err, r.ke_over_ie, r.steps);
+        EXPECT_LT(r.ke_over_ie, 1e-6);
+        EXPECT_LT(std::abs(err), previous);
+        EXPECT_LT(std::abs(err), nx == 8 ? 5e-3 : 2e-3);
+        previous = std::abs(err);
     }
 }
