@@ -248,7 +248,7 @@ TEST(ShellBtOutput, SurfaceStressesInVtuAndPartMaximum) {
 // (bending and twisting: the force acts at one tip corner) vibrates freely; kinetic + internal +
 // hourglass energy equals the work of the force at every cycle (the solver's balance, to 1e-4 of
 // the work; measured 5e-9), and the hourglass energy stays below 1 % of the largest internal energy
-// (measured 1.1e-4; HG / IE at the same instant only peaks when the plate swings through its
+// (measured 1.5e-4; HG / IE at the same instant only peaks when the plate swings through its
 // undeformed shape, where IE passes near zero).
 TEST(ShellBtEnergy, SuddenCornerLoadBalancesExternalWork) {
     Mesh mesh = rectangle_quads(0.1, 0.02, 20, 4, ElementShape::Quad4, "plate");
