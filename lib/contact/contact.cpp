@@ -26,6 +26,8 @@ struct ContactInterface::Pass {
     struct History {
         Vec3 force = Vec3::Zero();      // elastic tangential force (friction spring)
         int segment = -1;               // segment of the last cycle (-1: not in contact)
+        int side = 0;                   // two-sided (shell) segment: the side the node touches (+-1)
+        Vec3 normal = Vec3::Zero();     // the contact normal of the last cycle (side applied)
     };
     std::vector<History> history;       // per slave node
 
@@ -33,11 +35,14 @@ struct ContactInterface::Pass {
         : slave(&s), master(&m), rigid(is_rigid),
           list(o.margin > 0 ? o.margin : 0.25 * m.mean_segment_size(), o.max_rebuild_interval) {
         std::set<int> nodes;
+        double slave_offset = 0.0;
+        for (double t : s.node_offset) slave_offset = std::max(slave_offset, t);
         for (const auto& seg : m.segments) {
             const double h = std::sqrt(seg.area);
             size.push_back(h);
-            // A node in contact lies within depth behind the face and edge_tolerance x h beside it.
-            depth.push_back(std::isfinite(seg.depth) ? seg.depth : h);
+            // A node in contact lies within depth behind the face (its offset contact surface, shell
+            // thickness: both offsets added) and edge_tolerance x h beside it.
+            depth.push_back((std::isfinite(seg.depth) ? seg.depth : h) + seg.offset + slave_offset);
             lateral.push_back(o.edge_tolerance * h);
             if (h > 0) turn_factor = std::max(turn_factor, 1.0 + 2.0 * depth.back() / h);
             for (int i = 0; i < seg.count; ++i) nodes.insert(seg.n[i]);
@@ -141,14 +146,27 @@ void ContactInterface::evaluate(std::span<const Vec3> x, std::span<const Vec3> v
             // depth) is outside the master body, however deep it lies behind another face whose
             // edge tolerance it falls in (a finger beside a thick object, level with its faces).
             auto& hist = P.history[i];
-            int best = -1;
+            int best = -1, best_side = 0;
             Projection bp;
             double nearest_front = std::numeric_limits<double>::infinity();
+            const double node_offset = P.slave->node_offset.empty() ? 0.0 : P.slave->node_offset[i];
             for (int s : P.list.candidates(static_cast<int>(i))) {
                 const auto& seg = segs[s];
-                const Projection pr = seg.count == 4
-                                          ? project_quad(xs, xm[seg.n[0]], xm[seg.n[1]], xm[seg.n[2]], xm[seg.n[3]])
-                                          : project_triangle(xs, xm[seg.n[0]], xm[seg.n[1]], xm[seg.n[2]]);
+                Projection pr = seg.count == 4
+                                    ? project_quad(xs, xm[seg.n[0]], xm[seg.n[1]], xm[seg.n[2]], xm[seg.n[3]])
+                                    : project_triangle(xs, xm[seg.n[0]], xm[seg.n[1]], xm[seg.n[2]]);
+                // Shell thickness (surface.hpp): a two-sided segment is touched from the side the node
+                // is on (kept while the contact lasts); the gap is measured from the offset surfaces.
+                int side = 0;
+                if (seg.two_sided) {
+                    if (hist.segment >= 0 && hist.side != 0)  // in contact: stay on the same side, also
+                        side = s == hist.segment ? hist.side : (pr.normal.dot(hist.normal) >= 0.0 ? 1 : -1);  // sliding on
+                    else
+                        side = pr.gap >= 0.0 ? 1 : -1;
+                    pr.gap *= side;
+                    pr.normal *= side;
+                }
+                pr.gap -= seg.offset + node_offset;
                 const double tiny = 1e-9 * P.size[s];
                 if (pr.gap > tiny && pr.tangential_offset <= tiny) nearest_front = std::min(nearest_front, pr.gap);
                 if (!(pr.gap < -tiny) || -pr.gap > P.depth[s] || pr.tangential_offset > opt_.edge_tolerance * P.size[s])
@@ -156,6 +174,7 @@ void ContactInterface::evaluate(std::span<const Vec3> x, std::span<const Vec3> v
                 const bool kept = s == hist.segment;
                 if (best < 0 || kept || (best != hist.segment && pr.distance < bp.distance)) {
                     best = s;
+                    best_side = side;
                     bp = pr;
                 }
             }
@@ -189,6 +208,8 @@ void ContactInterface::evaluate(std::span<const Vec3> x, std::span<const Vec3> v
                 cp.slipping = fr.slipping;
             }
             hist.segment = best;
+            hist.side = best_side;
+            hist.normal = bp.normal;
             force[node] += F;
             if (P.rigid) {
                 rigid_power += F.dot(vmp);

@@ -72,8 +72,11 @@ double element_volume(ElementShape shape, std::span<const Vec3> x) {
 }
 
 ContactSurface ContactSurface::from_part(const Mesh& mesh, std::string_view part, const ElasticMaterial& material,
-                                         double sf) {
+                                         double sf, double shell_thickness) {
     if (!(sf > 0.0)) throw InputError(fmt::format("contact surface of part '{}': scale factor {} must be > 0", part, sf));
+    if (!(shell_thickness >= 0.0) || !std::isfinite(shell_thickness))
+        throw InputError(fmt::format("contact surface of part '{}': shell thickness {} must be >= 0", part,
+                                     shell_thickness));
     ContactSurface surf;
     surf.name = std::string(part);
     const double B = bulk_modulus(material);
@@ -111,6 +114,8 @@ ContactSurface ContactSurface::from_part(const Mesh& mesh, std::string_view part
                                                        (X[s.n[0]] - X[s.n[2]]).norm()});
                 s.stiffness = shell_penalty_stiffness(B, s.area, diag, sf);  // Eq 2-30b
                 s.depth = 0.5 * diag;
+                s.offset = 0.5 * shell_thickness;
+                s.two_sided = shell_thickness > 0.0;
                 surf.segments.push_back(s);
                 continue;
             }
@@ -165,10 +170,14 @@ ContactSurface ContactSurface::from_part(const Mesh& mesh, std::string_view part
     });
     for (const auto& s : surf.segments)
         for (int i = 0; i < s.count; ++i) add_node(s.n[i], s);
+    std::map<int, double> offset;  // slave nodes of shells carry half the thickness
+    for (const auto& s : surf.segments)
+        for (int i = 0; i < s.count; ++i) offset[s.n[i]] = std::max(offset[s.n[i]], s.offset);
     for (const auto& [node, k] : k_node) {
         surf.nodes.push_back(node);
         surf.node_stiffness.push_back(k.first);
         surf.node_size.push_back(k.second);
+        surf.node_offset.push_back(offset[node]);
     }
     return surf;
 }
@@ -185,6 +194,7 @@ ContactSurface ContactSurface::rigid_part(const Mesh& mesh, std::string_view par
     s.nodes.clear();
     s.node_stiffness.clear();
     s.node_size.clear();
+    s.node_offset.clear();
     s.rigid = true;
     return s;
 }

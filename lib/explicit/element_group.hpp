@@ -14,6 +14,7 @@
 #include <memory>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/types.hpp"
@@ -68,6 +69,10 @@ public:
     virtual bool needs_rotations() const { return false; }
     /// Nodes the group touches (for allocating rotational DOFs).
     virtual std::vector<int> nodes() const = 0;
+    /// Called by the solver once at the start of a run, when the nodal state (positions, rotations)
+    /// is set up and before the first force evaluation: a group with history variables (the stresses
+    /// of a rate-form shell) resets them to this state. Stateless groups ignore it.
+    virtual void initialize(const NodalState& s) {}
     /// Adds the group's lumped mass (and rotational inertia) to the state; returns the mass added
     /// by selective mass scaling (already included).
     virtual double add_lumped_mass(NodalState& s) const = 0;
@@ -86,6 +91,9 @@ public:
     /// Which rule gives element e's critical step (the summary names it for the controlling element):
     /// "Table 2-1" unless the group has several (beams: axial L/c or the transverse bending bound).
     virtual std::string time_step_rule(int element) const { return "Table 2-1"; }
+    /// Further per-element output fields for VTU (name, one value per element of the block), e.g.
+    /// the shells' von Mises stress at the top and bottom surfaces. Blocks of other groups get zeros.
+    virtual std::vector<std::pair<std::string, std::vector<double>>> cell_fields() const { return {}; }
 
     /// True when the group has viscous forces (bulk viscosity, stiffness damping) and, whenever
     /// s.fv is non-empty, internal_forces also adds their nodal values to s.fv (they stay in s.f).

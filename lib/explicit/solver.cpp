@@ -48,6 +48,11 @@ void ExplicitModel::add_beams(std::string_view part, const ElasticMaterial& mate
     for (int b : mesh_.blocks_of_part(part)) groups_.push_back(std::make_unique<BeamGroup>(mesh_, b, material, options));
 }
 
+void ExplicitModel::add_shells(std::string_view part, const ElasticMaterial& material, const ShellOptions& options) {
+    for (int b : mesh_.blocks_of_part(part))
+        groups_.push_back(std::make_unique<ShellGroup>(mesh_, b, material, options));
+}
+
 void ExplicitModel::add_point_mass(const std::string& part, int node, double mass, double rotational_inertia) {
     check_nodes({node}, fmt::format("point mass of part '{}'", part).c_str());
     if (finalized_) throw InputError("add_point_mass after the solver was created");
@@ -78,7 +83,7 @@ void ExplicitModel::finalize() {
         groups_.push_back(std::make_unique<PointMassGroup>(part, d.first, d.second.first,
                                                            rot ? d.second.second : std::vector<double>{}));
     }
-    if (groups_.empty()) throw InputError("explicit model has no parts: add hex8, beams or point masses");
+    if (groups_.empty()) throw InputError("explicit model has no parts: add hex8, tetrahedra, shells, beams or point masses");
     for (const auto& m : motions_)
         if (!m.part.empty())
             for (const auto& g : groups_)
@@ -374,7 +379,7 @@ void ExplicitSolver::initialize() {
     s_.rotation.assign(nr, Mat3::Identity());
     for (const auto& [node, w] : model_.initial_angular_velocity()) {
         if (s_.rot_index[node] < 0)
-            throw InputError(fmt::format("initial angular velocity on node {}, which has no rotations (no beam)", node));
+            throw InputError(fmt::format("initial angular velocity on node {}, which has no rotations (no beam or shell)", node));
         s_.omega[s_.rot_index[node]] = w;
     }
 
@@ -406,6 +411,7 @@ void ExplicitSolver::initialize() {
                 }
     }
     for (const auto& g : groups) {
+        g->initialize(s_);  // history variables (shell stresses) start from this state
         summary_.added_mass += g->add_lumped_mass(s_);
         summary_.mass += g->mass();
         summary_.elements += g->size();
@@ -469,7 +475,7 @@ void ExplicitSolver::initialize() {
         if (l.moment)
             for (int node : l.nodes)
                 if (s_.rot_index[node] < 0)
-                    throw InputError(fmt::format("nodal moment on node {}, which has no rotations (no beam)", node));
+                    throw InputError(fmt::format("nodal moment on node {}, which has no rotations (no beam or shell)", node));
     }
     if (model_.gravity().squaredNorm() > 0) has_loads_ = true;
     fext_.assign(n, Vec3::Zero());
@@ -828,6 +834,21 @@ void ExplicitSolver::write_vtu(double t) {
     io::Field vm{"von_mises", 1, {}};
     for (const auto& b : per_block) vm.values.insert(vm.values.end(), b.begin(), b.end());
     data.cell_fields = {std::move(vm)};
+    // The groups' further fields (shells: von Mises at the bottom, mid and top surfaces), zero on
+    // the blocks of groups that do not have them.
+    std::map<std::string, std::vector<std::vector<double>>> extra;
+    for (const auto& g : model_.groups())
+        for (auto& [name, values] : g->cell_fields()) {
+            auto& blocks = extra[name];
+            if (blocks.empty())
+                for (std::size_t b = 0; b < mesh.blocks.size(); ++b) blocks.emplace_back(mesh.blocks[b].size(), 0.0);
+            if (g->block >= 0) blocks[g->block] = std::move(values);
+        }
+    for (auto& [name, blocks] : extra) {
+        io::Field f{name, 1, {}};
+        for (const auto& b : blocks) f.values.insert(f.values.end(), b.begin(), b.end());
+        data.cell_fields.push_back(std::move(f));
+    }
     pvd_->add(t, mesh, data, s_.x);
 }
 

@@ -49,6 +49,7 @@
 #include "explicit/element_group.hpp"
 #include "explicit/groups.hpp"
 #include "explicit/rigid_motion.hpp"
+#include "explicit/shell_group.hpp"
 #include "io/vtu.hpp"
 #include "mesh/mesh.hpp"
 
@@ -74,6 +75,9 @@ public:
     // --- parts (one group per block of the part) ---
     void add_hex8(std::string_view part, const ElasticMaterial& material, const Hex8Options& options = {});
     void add_beams(std::string_view part, const ElasticMaterial& material, const BeamOptions& options);
+    /// Belytschko-Tsay shells (quad4; tri3 as degenerate quads) of thickness options.thickness on
+    /// every block of `part` (explicit/shell_group.hpp).
+    void add_shells(std::string_view part, const ElasticMaterial& material, const ShellOptions& options);
     /// A point mass on one node (thesis "Mass 166"); several calls with the same part name add to it.
     void add_point_mass(const std::string& part, int node, double mass, double rotational_inertia = 0.0);
     /// Every Point1 element of a Point1 block `part` gets `mass_each`.

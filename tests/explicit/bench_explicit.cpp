@@ -2,8 +2,9 @@
 // 4-node and 10-node tetrahedra (with the critical step, as every cycle of a run) and whole solver
 // steps on the same meshes, on 1 and 2 OpenMP threads; the hexahedron kernel's variants (without
 // the step, a 4,096-element mesh that stays in cache); the 100-element wire of thesis Table 2-8
-// (beams, rotations); and penalty contact per slave node and cycle. The program ends with one table
-// of the rates per type (make bench prints it). Run: build/bench/bench_explicit.
+// (beams, rotations); ~100,000 Belytschko-Tsay shells (forces and solver steps); and penalty
+// contact per slave node and cycle. The program ends with one table of the rates per type (make
+// bench prints it). Run: build/bench/bench_explicit.
 //
 // Counters: elem_cycles_per_s (wall clock), elem_cycles_per_cpu_s (per second of process CPU time,
 // all threads: the throughput per core actually used, which the other users of a shared machine
@@ -46,6 +47,7 @@ double load1() {
 }
 
 const ElasticMaterial kRubber = ElasticMaterial::make("rubber", 5e6, 0.49, 1100);
+const ElasticMaterial kSteelShell = ElasticMaterial::make("steel", 210e9, 0.28, 7700);
 
 // The table printed at the end: one row per (what, threads), the last measurement of each.
 struct Row {
@@ -212,6 +214,99 @@ void BM_SolverSteps(benchmark::State& state) {
 }
 BENCHMARK(BM_SolverSteps)->ArgsProduct({{0, 1, 2}, {1, 2}})->ArgNames({"type", "threads"})->UseManualTime()
     ->Unit(benchmark::kMillisecond)->Iterations(2);
+
+// 320 x 320 = 102,400 Belytschko-Tsay shells (explicit/shell_group.hpp), a plate with random small
+// displacements, rotations and velocities: the group's internal forces per cycle (node pass for the
+// increments, two corotational frames, stress update through the thickness, hourglass, drilling,
+// the Table 2-1 step when dt = 1), on 1 and 2 threads.
+const Mesh& shell_mesh() {
+    static const Mesh m = rectangle_quads(0.32, 0.32, 320, 320, ElementShape::Quad4, "plate");
+    return m;
+}
+
+void BM_ShellInternalForces(benchmark::State& state) {
+    par::set_threads(static_cast<int>(state.range(0)));
+    const bool with_dt = state.range(1) != 0;
+    const Mesh& mesh = shell_mesh();
+    ShellGroup g(mesh, 0, kSteelShell, {.thickness = 1e-3});
+    NodalState s = test::state_at_rest(mesh);
+    std::mt19937 rng(1);
+    std::uniform_real_distribution<double> u(-1e-6, 1e-6);
+    s.rot_index.resize(mesh.node_count());
+    for (int i = 0; i < mesh.node_count(); ++i) {
+        s.rot_index[i] = i;
+        s.rot_node.push_back(i);
+    }
+    s.omega.assign(mesh.node_count(), Vec3::Zero());
+    s.moment.assign(mesh.node_count(), Vec3::Zero());
+    s.inertia.assign(mesh.node_count(), 1.0);
+    s.rotation.assign(mesh.node_count(), Mat3::Identity());
+    g.initialize(s);
+    const double load = load1();
+    double cpu = 0.0;
+    long passes = 0;
+    for (auto _ : state) {
+        // A fresh small step each pass (the group's increments are against its last evaluation).
+        state.PauseTiming();
+        for (int i = 0; i < mesh.node_count(); ++i) {
+            s.x[i] += Vec3(u(rng), u(rng), u(rng));
+            s.rotation[i] = Eigen::AngleAxisd(1e3 * u(rng), Vec3(u(rng), u(rng), u(rng)).normalized()) * s.rotation[i];
+        }
+        state.ResumeTiming();
+        const double cpu0 = cpu_seconds();
+        auto r = g.internal_forces(s, with_dt);
+        cpu += cpu_seconds() - cpu0;
+        ++passes;
+        benchmark::DoNotOptimize(r);
+    }
+    state.SetItemsProcessed(state.iterations() * g.size());
+    state.counters["elem_cycles_per_s"] =
+        benchmark::Counter(static_cast<double>(g.size()), benchmark::Counter::kIsIterationInvariantRate);
+    state.counters["elem_cycles_per_cpu_s"] = static_cast<double>(passes) * g.size() / cpu;
+    state.counters["threads"] = par::threads();
+    state.counters["load1"] = load;
+}
+BENCHMARK(BM_ShellInternalForces)
+    ->Args({1, 1})->Args({2, 1})->Args({1, 0})->Args({2, 0})->ArgNames({"threads", "dt"})
+    ->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// Whole solver steps on the 102,400-shell plate, clamped along one edge, started with a velocity
+// field: forces, step, node and rotation update, energies. The group's start-up stability
+// measurement (Lanczos, ShellGroup::initialize) is timed separately (setup_s).
+void BM_ShellSolverSteps(benchmark::State& state) {
+    par::set_threads(static_cast<int>(state.range(0)));
+    const int steps = 20;
+    double cycles_per_s = 0, cycles_per_cpu_s = 0, setup_s = 0;
+    const double load = load1();
+    for (auto _ : state) {
+        ExplicitModel model(shell_mesh());
+        model.add_shells("plate", kSteelShell, {.thickness = 1e-3});
+        model.fix(shell_mesh().node_set("x0"), Dofs::all());
+        model.set_initial_velocity([](const Vec3& X) { return Vec3(0, 0, 0.1 * X.x()); });
+        double dt = 1e300;
+        for (double d : model.groups()[0]->reference_time_steps()) dt = std::min(dt, d);
+        ExplicitOptions o;
+        o.print_summary = false;
+        o.progress = false;
+        o.end_time = (steps - 0.5) * 0.9 * dt;
+        const auto t0 = std::chrono::steady_clock::now();
+        ExplicitSolver solver(model, o);
+        setup_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        const double cpu0 = cpu_seconds();
+        const RunSummary sum = solver.run();
+        const double cpu = cpu_seconds() - cpu0;
+        state.SetIterationTime(sum.wall_s);
+        cycles_per_s = std::max(cycles_per_s, sum.element_cycles_per_s);
+        cycles_per_cpu_s = std::max(cycles_per_cpu_s, sum.element_cycles_per_s * sum.wall_s / cpu);
+    }
+    state.counters["elem_cycles_per_s"] = cycles_per_s;
+    state.counters["elem_cycles_per_cpu_s"] = cycles_per_cpu_s;
+    state.counters["load1"] = load;
+    state.counters["setup_s"] = setup_s;
+    state.counters["threads"] = par::threads();
+}
+BENCHMARK(BM_ShellSolverSteps)->Arg(1)->Arg(2)->ArgName("threads")->UseManualTime()->Unit(benchmark::kMillisecond)
+    ->Iterations(2);
 
 // The compliant beam of Table 2-8: 100 beam elements, tip mass, 2000 steps.
 void BM_WireSteps(benchmark::State& state) {
