@@ -170,14 +170,27 @@ gmsh::vectorpair limb_solid(const Leg& leg, int i) {
     return cut(fuse_all(parts), holes);
 }
 
-double total_mass(const gmsh::vectorpair& volumes) {
-    double sum = 0.0;
+// Volume, centroid and inertia about the centroid (unit density) of a set of volumes.
+MassProperties properties(const gmsh::vectorpair& volumes) {
+    MassProperties p;
+    Mat3 about_origin = Mat3::Zero();
     for (const auto& [d, t] : volumes) {
-        double m = 0.0;
+        double m = 0.0, x = 0.0, y = 0.0, z = 0.0;
+        std::vector<double> inertia;
         occ::getMass(d, t, m);
-        sum += m;
+        occ::getCenterOfMass(d, t, x, y, z);
+        occ::getMatrixOfInertia(d, t, inertia);  // about the entity's own centre of mass
+        const Vec3 c(x, y, z);
+        const Mat3 I = Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(inertia.data());
+        // Parallel axes to the origin: I_O = I_G + m (|c|^2 1 - c c^T).
+        about_origin += I + m * (c.squaredNorm() * Mat3::Identity() - c * c.transpose());
+        p.volume += m;
+        p.centroid += m * c;
     }
-    return sum;
+    p.centroid /= p.volume;
+    const Vec3& c = p.centroid;
+    p.inertia = about_origin - p.volume * (c.squaredNorm() * Mat3::Identity() - c * c.transpose());
+    return p;
 }
 
 std::vector<int> volume_tags(const gmsh::vectorpair& v) {
@@ -340,14 +353,16 @@ void validate(const Chicken& c) {
         if (!(b.length > 0.0 && b.height > 0.0 && b.thickness > 0.0)) bad("hip bricks need positive sizes");
 }
 
-double volume(const Chicken& c, bool half) {
+MassProperties mass_properties(const Chicken& c, bool half) {
     validate(c);
-    return with_model("chicken_volume", [&] {
+    return with_model("chicken_mass_properties", [&] {
         const gmsh::vectorpair bird = bird_solid(c, half);
         occ::synchronize();
-        return total_mass(bird);
+        return properties(bird);
     });
 }
+
+double volume(const Chicken& c, bool half) { return mass_properties(c, half).volume; }
 
 double density_for_mass(const Chicken& c) { return c.mass / volume(c, false); }
 
@@ -459,14 +474,14 @@ double theta_b(const Vec3& head, const Vec3& body_center) {
     return std::atan2(d.y(), d.x());
 }
 
-double limb_volume(const Chicken& c, int limb) {
+MassProperties limb_mass_properties(const Chicken& c, int limb) {
     validate(c);
     if (limb < 1 || limb > c.leg.limb_count())
-        throw InputError(fmt::format("limb_volume: limb {} does not exist (the leg has {})", limb, c.leg.limb_count()));
-    return with_model("limb_volume", [&] {
+        throw InputError(fmt::format("limb_mass_properties: limb {} does not exist (the leg has {})", limb, c.leg.limb_count()));
+    return with_model("limb_mass_properties", [&] {
         const gmsh::vectorpair v = limb_solid(c.leg, limb - 1);
         occ::synchronize();
-        return total_mass(v);
+        return properties(v);
     });
 }
 

@@ -25,6 +25,14 @@ struct OdeContext {
     std::exception_ptr error;
 };
 
+// Hessian of V (gravity and the springs) in (phi1, phi2); the rest angles do not enter.
+Eigen::Matrix2d potential_hessian(const LumpedBird& b, const LumpedBirdState& s) {
+    const double S1 = b.m1 * b.c1 + b.m2 * b.L1, S2 = b.m2 * b.l2;
+    Eigen::Matrix2d K;
+    K << -b.g * S1 * std::sin(s.phi1) + b.k1 + b.k2, -b.k2, -b.k2, -b.g * S2 * std::sin(s.phi2) + b.k2;
+    return K;
+}
+
 int rhs(double t, const double y[], double dydt[], void* params) {
     auto* ctx = static_cast<OdeContext*>(params);
     try {
@@ -251,11 +259,6 @@ LumpedBirdState LumpedBirdModel::equilibrium(double t, const LumpedBirdState& gu
         const double d2 = q.phi2 - q.phi1 - frozen.rest2;
         return Vec2(b.g * S1 * std::cos(q.phi1) + b.k1 * (q.phi1 - frozen.rest1) - b.k2 * d2, b.g * S2 * std::cos(q.phi2) + b.k2 * d2);
     };
-    auto hessian = [&](const LumpedBirdState& q) {
-        Eigen::Matrix2d H;
-        H << -b.g * S1 * std::sin(q.phi1) + b.k1 + b.k2, -b.k2, -b.k2, -b.g * S2 * std::sin(q.phi2) + b.k2;
-        return H;
-    };
     {
         // Overdamped: alpha = 2 x an upper bound of the chain's frequencies; runs of 20 / omega_bound
         // until the gradient is small (each run removes the slow part by exp(-20 omega_min^2 / omega_bound^2)).
@@ -270,7 +273,7 @@ LumpedBirdState LumpedBirdModel::equilibrium(double t, const LumpedBirdState& gu
         for (int run = 0; run < 2000 && gradient(s).norm() > 1e-3 * scale; ++run) s = heavy.run(s, s.t + 20.0 / omega, o).back().state;
     }
     for (int it = 0; it < 50; ++it) {
-        const Vec2 step = hessian(s).ldlt().solve(gradient(s));
+        const Vec2 step = potential_hessian(b, s).ldlt().solve(gradient(s));
         s.phi1 -= step.x();
         s.phi2 -= step.y();
         if (step.norm() < 1e-14) break;
@@ -284,12 +287,11 @@ LumpedBirdState LumpedBirdModel::equilibrium(double t, const LumpedBirdState& gu
 }
 
 Vec2 LumpedBirdModel::linearised_omega_squared(const LumpedBirdState& s) const {
-    const LumpedBird& b = bird_;
-    const double S1 = b.m1 * b.c1 + b.m2 * b.L1, S2 = b.m2 * b.l2;
-    Eigen::Matrix2d K;
-    K << -b.g * S1 * std::sin(s.phi1) + b.k1 + b.k2, -b.k2, -b.k2, -b.g * S2 * std::sin(s.phi2) + b.k2;
-    Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::Matrix2d> es(K, mass_matrix(s));
-    return es.eigenvalues();
+    return Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::Matrix2d>(potential_hessian(bird_, s), mass_matrix(s)).eigenvalues();
+}
+
+Eigen::Matrix2d LumpedBirdModel::linearised_modes(const LumpedBirdState& s) const {
+    return Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::Matrix2d>(potential_hessian(bird_, s), mass_matrix(s)).eigenvectors();
 }
 
 }  // namespace fem::multibody

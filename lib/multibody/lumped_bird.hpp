@@ -119,8 +119,10 @@ public:
     /// stable one (the Hessian of V not positive definite). `guess` starts the search.
     LumpedBirdState equilibrium(double t, const LumpedBirdState& guess) const;
     /// The linearised free vibration about a static equilibrium: squared circular frequencies, the
-    /// eigenvalues of (K, M) with K the Hessian of V.
+    /// eigenvalues of (K, M) with K the Hessian of V, ascending.
     Vec2 linearised_omega_squared(const LumpedBirdState& equilibrium) const;
+    /// The corresponding mode shapes (columns, M-normalised), in (phi1, phi2).
+    Eigen::Matrix2d linearised_modes(const LumpedBirdState& equilibrium) const;
 
     /// Integrates from `start` to `end_time`, sampling every options.output_interval (and at every
     /// switch of the shackle's motion, where the velocities jump).
