@@ -72,8 +72,11 @@ double element_volume(ElementShape shape, std::span<const Vec3> x) {
 }
 
 ContactSurface ContactSurface::from_part(const Mesh& mesh, std::string_view part, const ElasticMaterial& material,
-                                         double sf) {
+                                         double sf, double shell_thickness) {
     if (!(sf > 0.0)) throw InputError(fmt::format("contact surface of part '{}': scale factor {} must be > 0", part, sf));
+    if (!(shell_thickness >= 0.0) || !std::isfinite(shell_thickness))
+        throw InputError(fmt::format("contact surface of part '{}': shell thickness {} must be >= 0", part,
+                                     shell_thickness));
     ContactSurface surf;
     surf.name = std::string(part);
     const double B = bulk_modulus(material);
@@ -111,6 +114,8 @@ ContactSurface ContactSurface::from_part(const Mesh& mesh, std::string_view part
                                                        (X[s.n[0]] - X[s.n[2]]).norm()});
                 s.stiffness = shell_penalty_stiffness(B, s.area, diag, sf);  // Eq 2-30b
                 s.depth = 0.5 * diag;
+                s.offset = 0.5 * shell_thickness;
+                s.two_sided = shell_thickness > 0.0;
                 surf.segments.push_back(s);
                 continue;
             }
@@ -145,16 +150,17 @@ ContactSurface ContactSurface::from_part(const Mesh& mesh, std::string_view part
             }
         }
     }
-    std::map<int, double> k_node;
-    auto add_node = [&](int node, double k) {
-        auto [it, fresh] = k_node.emplace(node, k);
-        if (!fresh) it->second = std::min(it->second, k);
+    std::map<int, std::pair<double, double>> k_node;  // node -> (smallest k, smallest element size)
+    auto add_node = [&](int node, const Segment& s) {
+        const double size = s.volume > 0.0 ? s.volume / s.area : std::sqrt(s.area);
+        auto [it, fresh] = k_node.emplace(node, std::pair{s.stiffness, size});
+        if (!fresh) it->second = {std::min(it->second.first, s.stiffness), std::min(it->second.second, size)};
     };
     for (const auto& [k, f] : faces)
         if (f.uses == 1) {
             surf.segments.push_back(f.seg);
             for (int m : f.mid)
-                if (m >= 0) add_node(m, f.seg.stiffness);
+                if (m >= 0) add_node(m, f.seg);
         }
     if (surf.segments.empty())
         throw InputError(fmt::format("contact surface of part '{}': the part has no solid or shell elements", part));
@@ -163,12 +169,34 @@ ContactSurface ContactSurface::from_part(const Mesh& mesh, std::string_view part
         return a.block != b.block ? a.block < b.block : a.element < b.element;
     });
     for (const auto& s : surf.segments)
-        for (int i = 0; i < s.count; ++i) add_node(s.n[i], s.stiffness);
+        for (int i = 0; i < s.count; ++i) add_node(s.n[i], s);
+    std::map<int, double> offset;  // slave nodes of shells carry half the thickness
+    for (const auto& s : surf.segments)
+        for (int i = 0; i < s.count; ++i) offset[s.n[i]] = std::max(offset[s.n[i]], s.offset);
     for (const auto& [node, k] : k_node) {
         surf.nodes.push_back(node);
-        surf.node_stiffness.push_back(k);
+        surf.node_stiffness.push_back(k.first);
+        surf.node_size.push_back(k.second);
+        surf.node_offset.push_back(offset[node]);
     }
     return surf;
+}
+
+ContactSurface ContactSurface::rigid_part(const Mesh& mesh, std::string_view part, double depth) {
+    if (!(depth > 0.0)) throw InputError(fmt::format("rigid contact surface '{}': depth {} must be > 0", part, depth));
+    // Any material: the stiffness is discarded (a rigid side takes the deformable side's k).
+    ContactSurface s = from_part(mesh, part, ElasticMaterial::make("rigid", 1.0, 0.0, 1.0));
+    for (auto& seg : s.segments) {
+        seg.stiffness = std::numeric_limits<double>::infinity();
+        seg.depth = depth;
+        seg.volume = 0.0;
+    }
+    s.nodes.clear();
+    s.node_stiffness.clear();
+    s.node_size.clear();
+    s.node_offset.clear();
+    s.rigid = true;
+    return s;
 }
 
 double ContactSurface::mean_segment_size() const {
