@@ -277,7 +277,7 @@ double Leg::limb_angle(int i) const {
 
 std::array<double, 3> calibrated_widths_table_5_1() {
     // Calibrated by `chicken_shackling --calibrate` (study README, "Calibration of the limbs").
-    return {6.0 * mm, 17.0 * mm, 22.0 * mm};
+    return {4.38 * mm, 12.99 * mm, 21.23 * mm};
 }
 
 Chicken table_5_1_chicken() {

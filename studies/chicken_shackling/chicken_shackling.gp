@@ -49,16 +49,27 @@ reset
 # --- Fig 5-3 / Table 5-2: force-displacement of each limb -------------------------------------------------
 set terminal @term size 900,650 enhanced font 'sans,12' background rgb 'white'
 set output figures.'/fig-5-3-limbs.'.ext
-set multiplot layout 1,3 title "Table 5-2  Force-displacement of each limb alone: thesis (ANSYS SOLID92), ours (tet10, dynamic relaxation; widths calibrated), linear"
+set multiplot layout 1,3 title "Table 5-2  Each limb alone: thesis (ANSYS SOLID92) and ours (tet10, dynamic relaxation, calibrated widths)"
 set grid
-set key top left font ',10'
-set xlabel 'displacement of the loaded joint (mm)'
+set key bottom right font ',10'
+set xlabel 'd of the loaded joint (mm)'
+set xrange [0:*]
+set yrange [0:*]
 set ylabel 'force (N)'
+steps = '10 4 2'
 do for [i=1:3] {
     set title sprintf('limb %d', i)
-    plot results.'/limb-'.i.'.dat' using 2:1 with linespoints pt 7 lw 2 lc rgb '#d62728' title 'thesis', \
-         '' using 3:1 with linespoints pt 5 lw 2 lc rgb '#1f77b4' title 'ours', \
-         '' using 4:1 with lines dt 2 lw 1.5 lc rgb '#7f7f7f' title 'ours, linear'
+    set xtics word(steps, i) + 0
+    if (i < 3) {
+        plot results.'/limb-'.i.'.dat' using 2:1 with linespoints pt 7 lw 2 lc rgb '#d62728' title 'thesis', \
+             '' using 3:1 with linespoints pt 5 lw 2 lc rgb '#1f77b4' title 'ours', \
+             '' using 4:1 with lines dt 2 lw 1.5 lc rgb '#7f7f7f' title 'ours, linear'
+    } else {
+        plot results.'/limb-'.i.'.dat' using 2:1 with linespoints pt 7 lw 2 lc rgb '#d62728' title 'thesis', \
+             '' using 3:1 with linespoints pt 5 lw 2 lc rgb '#1f77b4' title 'ours', \
+             '' using 4:1 with lines dt 2 lw 1.5 lc rgb '#7f7f7f' title 'ours, linear', \
+             results.'/limb-3-reversed.dat' using 2:1 with linespoints pt 4 lw 1.5 lc rgb '#2ca02c' title 'ours, fixed at J3'
+    }
 }
 unset multiplot
 reset
@@ -68,7 +79,8 @@ set terminal @term size 900,650 enhanced font 'sans,12' background rgb 'white'
 set output figures.'/fig-5-24-25-lagrange.'.ext
 set multiplot layout 2,2 title "Figs 5-24/5-25  Body-centre displacement of the 2-D Lagrange bird (our reconstruction; Table 5-2 springs)"
 set grid
-set key top right font ',10'
+set key top left font ',10'
+set offsets 0, 0, graph 0.4, 0
 set xlabel 't (s)'
 set ylabel '|displacement| (mm)'
 set style fill transparent solid 0.25 noborder
@@ -78,10 +90,12 @@ do for [c in 'rotating inverting'] {
          '' using 1:2 with lines lw 2 lc rgb '#1f77b4' title 'nominal, undamped', \
          '' using 1:5 with lines lw 2 dt 2 lc rgb '#d62728' title 'alpha = 100 1/s'
 }
+set offsets 0, 0, 0, 0
 set size ratio -1
 set xlabel 'x (mm)'
 set ylabel 'y (mm)'
-set xtics 50
+set xtics 100
+set ytics 50
 set cblabel 'snapshot (x 50 ms)'
 unset key
 do for [c in 'rotating inverting'] {
