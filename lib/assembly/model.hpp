@@ -48,7 +48,7 @@ struct SolidOptions {
     solid::Tet10MassRule tet10_mass_rule = solid::Tet10MassRule::Exact;
 };
 
-/// The kernel of a linear solid block (hex8 or tet10) of material m; InputError for other shapes.
+/// The kernel of a linear solid block (hex8, tet4 or tet10) of material m; InputError for other shapes.
 ElementKernel solid_kernel(ElementShape shape, const ElasticMaterial& m, const SolidOptions& options = {});
 
 /// The kernel of a MITC4 shell block (quad4, 6 DOFs per node; element/shell_mitc4.hpp) of thickness
@@ -101,6 +101,8 @@ public:
     AssembledSystem assemble() const;
 
     const Mesh& mesh() const { return mesh_; }
+    /// The supports and couplings stated so far.
+    const Constraints& constraints() const { return constraints_; }
 
 private:
     struct Entry {

@@ -233,6 +233,31 @@ Eigen::MatrixXd tet10_mass(std::span<const Vec3> x, double density, MassKind kin
     return expand3(m);
 }
 
+Eigen::MatrixXd tet4_stiffness(std::span<const Vec3> x, const ElasticMaterial& m) {
+    const auto X = coordinates<4>(x, "tet4 element");
+    // Linear shape functions L0 = 1 - r - s - t, L1 = r, L2 = s, L3 = t: constant gradients.
+    Eigen::Matrix<double, 3, 4> dn;
+    dn << -1, 1, 0, 0, -1, 0, 1, 0, -1, 0, 0, 1;
+    Eigen::Matrix<double, 3, 4> g;
+    const double det = physical_derivatives<4>(X, dn, g, "tet4 element");
+    const Eigen::Matrix<double, 6, 12> B = strain_matrix<4>(g);
+    const Eigen::Matrix<double, 12, 12> K = B.transpose() * elasticity_matrix(m) * B * (det / 6);
+    return Eigen::MatrixXd(0.5 * (K + K.transpose()));
+}
+
+Eigen::MatrixXd tet4_mass(std::span<const Vec3> x, double density, MassKind kind) {
+    const auto X = coordinates<4>(x, "tet4 element");
+    const Mat3 J = (X.rightCols<3>().colwise() - X.col(0)).transpose();
+    const double volume = J.determinant() / 6;
+    if (!(volume > 0.0))
+        throw InputError("tet4 element has a non-positive volume (" + std::to_string(volume) + "): it is inverted or flat");
+    const double mass = density * volume;
+    // int N_a N_b dV = V (1 + delta_ab) / 20 for linear shape functions.
+    Eigen::MatrixXd m = kind == MassKind::Lumped ? Eigen::MatrixXd(Eigen::MatrixXd::Identity(4, 4) * (mass / 4))
+                                                 : Eigen::MatrixXd((Eigen::MatrixXd::Ones(4, 4) + Eigen::MatrixXd::Identity(4, 4)) * (mass / 20));
+    return expand3(m);
+}
+
 double hex8_volume(std::span<const Vec3> x) {
     return hex8_mass(x, 1.0, MassKind::Consistent).sum() / 3.0;
 }

@@ -1,7 +1,7 @@
 #pragma once
 // Linear solid elements for implicit (modal) analysis: the element stiffness K = int B^T D B dV and
-// mass M = int rho N^T N dV (thesis Eq 2-36/2-38 need both) of the 8-node hexahedron and the 10-node
-// tetrahedron. Three displacement DOFs per node, ordered ux, uy, uz node after node, so the matrices
+// mass M = int rho N^T N dV (thesis Eq 2-36/2-38 need both) of the 8-node hexahedron and the 4- and
+// 10-node tetrahedra. Three displacement DOFs per node, ordered ux, uy, uz node after node, so the matrices
 // are 3n x 3n with n = 8 or 10. Node orders are the library's (mesh/element_shape.hpp): hex8 bottom
 // face 0-3 counter-clockwise then the top face; tet10 corners 0-3 then the mid-edge nodes of edges
 // 01, 12, 02, 03, 23, 13 (Gmsh order; CalculiX C3D10 and VTK swap the last two).
@@ -48,6 +48,12 @@ enum class Tet10MassRule {
 /// tet each corner node gets 1/36 and each mid-edge node 4/27 of the element mass).
 Eigen::MatrixXd tet10_mass(std::span<const Vec3> x, double density, MassKind kind = MassKind::Consistent,
                            Tet10MassRule rule = Tet10MassRule::Exact);
+
+/// Tet4 (constant-strain tetrahedron, CalculiX C3D4) stiffness (12 x 12), exact with one point.
+/// Throws InputError for a non-positive volume.
+Eigen::MatrixXd tet4_stiffness(std::span<const Vec3> x, const ElasticMaterial& m);
+/// Tet4 mass (12 x 12): consistent rho V / 20 (1 + delta_ab) (exact), or lumped rho V / 4 per node.
+Eigen::MatrixXd tet4_mass(std::span<const Vec3> x, double density, MassKind kind = MassKind::Consistent);
 
 /// Volumes by the element's own mapping (for mass checks).
 double hex8_volume(std::span<const Vec3> x);

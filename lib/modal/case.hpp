@@ -6,7 +6,11 @@
 //   modes = 30
 //   shift_hz = 0.0              # < 0 for a free structure (rigid-body modes), see modal.hpp
 //   mass = "consistent"         # or "lumped"
+//   tet10_mass = "exact"        # consistent tet10 mass rule: "exact" (degree 7) or "four_point"
+//                               # (the stiffness rule, as CalculiX's C3D10; see solid_elements.hpp)
 //   output = "frame_modes"      # folder for frequencies.csv, modes.h5, modes.pvd (+ VTUs)
+//   shapes = 5                  # mode shapes written (VTU + modes.h5): the first 5; 0 = frequencies
+//                               # only; default all
 //
 //   [materials.steel]
 //   E = 210e9                   # Pa
@@ -17,6 +21,9 @@
 //   name = "plate"              # physical group name
 //   material = "steel"
 //   thickness = 0.002           # only for shell parts (quad4, MITC4)
+//   element = "C3D8"            # formulation, named as CalculiX/Abaqus name it (modal/deck_run.hpp):
+//                               # hex8 "C3D8I" (incompatible modes, default) or "C3D8" (fully
+//                               # integrated trilinear); tet10 "C3D10"; tet4 "C3D4"; quad4 shells "S4"
 //
 //   [[supports]]
 //   set = "base"                # physical group giving a node set
@@ -40,12 +47,18 @@
 #include "material/elastic.hpp"
 #include "modal/modal.hpp"
 
+namespace fem {
+struct Mesh;
+class Model;
+}  // namespace fem
+
 namespace fem::modal {
 
 struct CasePart {
     std::string name;
     ElasticMaterial material;
     double thickness = 0.0;  // > 0 for shells
+    std::string element;     // deck element type ("C3D8"); empty = the default for the mesh's shape
 };
 struct CaseSupport {
     std::string set;
@@ -60,6 +73,8 @@ struct ModalCase {
     std::filesystem::path mesh, output;
     ModalOptions options;
     solid::MassKind mass = solid::MassKind::Consistent;
+    solid::Tet10MassRule tet10_mass = solid::Tet10MassRule::Exact;
+    int shapes = -1;  // mode shapes to write; < 0 all, 0 none
     std::vector<CasePart> parts;
     std::vector<CaseSupport> supports;
     std::vector<CaseCoupling> couplings;
@@ -77,5 +92,14 @@ ModalCase parse_modal_case(std::string_view text, const std::string& source, con
 /// previous run's files are replaced and listed in manifest.txt) and returns the run summary.
 /// Unknown physical groups and blocks without a part are InputErrors.
 std::string run_modal_case(const ModalCase& c);
+
+/// The model of a case on its mesh: each part's blocks with their element formulation, supports and
+/// couplings (what run_modal_case solves and export_case_deck writes).
+void build_case_model(const ModalCase& c, const Mesh& mesh, Model& model);
+
+/// Writes the case's model as a CalculiX/Abaqus deck with a *FREQUENCY step of case.options.modes
+/// modes, so that `ccx <stem>` checks it; returns notes on what ccx will compute differently (the
+/// tet10 mass rule, MITC4 against ccx's S4).
+std::string export_case_deck(const ModalCase& c, const std::filesystem::path& deck);
 
 }  // namespace fem::modal
