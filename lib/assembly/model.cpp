@@ -24,7 +24,7 @@ ElementKernel solid_kernel(ElementShape shape, const ElasticMaterial& m, const S
             };
         case ElementShape::Tet4:
             return [m, o](std::span<const Vec3> x, int) {
-                return ElementMatrices{solid::tet4_stiffness(x, m), solid::tet4_mass(x, m.density, o.mass)};
+                return ElementMatrices{solid::tet4_stiffness(x, m), solid::tet4_mass(x, m.density, o.mass, o.tet4_mass_rule)};
             };
         default:
             throw InputError("no linear solid element for shape " + std::string(to_string(shape)) +

@@ -46,6 +46,7 @@ struct SolidOptions {
     solid::MassKind mass = solid::MassKind::Consistent;
     bool incompatible_modes = true;  // hex8 only
     solid::Tet10MassRule tet10_mass_rule = solid::Tet10MassRule::Exact;
+    solid::Tet4MassRule tet4_mass_rule = solid::Tet4MassRule::Exact;
 };
 
 /// The kernel of a linear solid block (hex8, tet4 or tet10) of material m; InputError for other shapes.

@@ -245,7 +245,7 @@ Eigen::MatrixXd tet4_stiffness(std::span<const Vec3> x, const ElasticMaterial& m
     return Eigen::MatrixXd(0.5 * (K + K.transpose()));
 }
 
-Eigen::MatrixXd tet4_mass(std::span<const Vec3> x, double density, MassKind kind) {
+Eigen::MatrixXd tet4_mass(std::span<const Vec3> x, double density, MassKind kind, Tet4MassRule rule) {
     const auto X = coordinates<4>(x, "tet4 element");
     const Mat3 J = (X.rightCols<3>().colwise() - X.col(0)).transpose();
     const double volume = J.determinant() / 6;
@@ -253,8 +253,10 @@ Eigen::MatrixXd tet4_mass(std::span<const Vec3> x, double density, MassKind kind
         throw InputError("tet4 element has a non-positive volume (" + std::to_string(volume) + "): it is inverted or flat");
     const double mass = density * volume;
     // int N_a N_b dV = V (1 + delta_ab) / 20 for linear shape functions.
-    Eigen::MatrixXd m = kind == MassKind::Lumped ? Eigen::MatrixXd(Eigen::MatrixXd::Identity(4, 4) * (mass / 4))
-                                                 : Eigen::MatrixXd((Eigen::MatrixXd::Ones(4, 4) + Eigen::MatrixXd::Identity(4, 4)) * (mass / 20));
+    Eigen::MatrixXd m;
+    if (kind == MassKind::Lumped) m = Eigen::MatrixXd::Identity(4, 4) * (mass / 4);
+    else if (rule == Tet4MassRule::Centroid) m = Eigen::MatrixXd::Ones(4, 4) * (mass / 16);  // N_a = 1/4 at the centroid
+    else m = (Eigen::MatrixXd::Ones(4, 4) + Eigen::MatrixXd::Identity(4, 4)) * (mass / 20);
     return expand3(m);
 }
 

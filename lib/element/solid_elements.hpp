@@ -52,8 +52,15 @@ Eigen::MatrixXd tet10_mass(std::span<const Vec3> x, double density, MassKind kin
 /// Tet4 (constant-strain tetrahedron, CalculiX C3D4) stiffness (12 x 12), exact with one point.
 /// Throws InputError for a non-positive volume.
 Eigen::MatrixXd tet4_stiffness(std::span<const Vec3> x, const ElasticMaterial& m);
-/// Tet4 mass (12 x 12): consistent rho V / 20 (1 + delta_ab) (exact), or lumped rho V / 4 per node.
-Eigen::MatrixXd tet4_mass(std::span<const Vec3> x, double density, MassKind kind = MassKind::Consistent);
+/// Quadrature rule for the tet4 consistent mass (N^T N is of degree 2).
+enum class Tet4MassRule {
+    Exact,     // rho V / 20 (1 + delta_ab)
+    Centroid,  // the stiffness's one point, as CalculiX integrates C3D4 (e_c3d.f: the mass uses the
+               // element's integration points): rho V / 16 in every entry, rank one per element
+};
+/// Tet4 mass (12 x 12): consistent (rule above), or lumped rho V / 4 per node.
+Eigen::MatrixXd tet4_mass(std::span<const Vec3> x, double density, MassKind kind = MassKind::Consistent,
+                          Tet4MassRule rule = Tet4MassRule::Exact);
 
 /// Volumes by the element's own mapping (for mass checks).
 double hex8_volume(std::span<const Vec3> x);

@@ -73,7 +73,7 @@ namespace {
 
 ModalCase from_document(const input::TomlDocument& doc, const std::string& stem) {
     const input::TomlTable root = doc.root();
-    root.allow({"mesh", "output", "modes", "shift_hz", "mass", "tet10_mass", "shapes", "materials", "parts", "supports",
+    root.allow({"mesh", "output", "modes", "shift_hz", "mass", "tet_mass_rule", "shapes", "materials", "parts", "supports",
                 "couplings"});
     ModalCase c;
     c.mesh = root.path("mesh");
@@ -82,9 +82,7 @@ ModalCase from_document(const input::TomlDocument& doc, const std::string& stem)
     c.options.shift_hz = root.real_or("shift_hz", 0.0);
     c.mass = root.choice_or("mass", {"consistent", "lumped"}, "consistent") == "lumped" ? solid::MassKind::Lumped
                                                                                        : solid::MassKind::Consistent;
-    c.tet10_mass = root.choice_or("tet10_mass", {"exact", "four_point"}, "exact") == "four_point"
-                       ? solid::Tet10MassRule::FourPoint
-                       : solid::Tet10MassRule::Exact;
+    c.tet_mass_rule_as_ccx = root.choice_or("tet_mass_rule", {"exact", "ccx"}, "exact") == "ccx";
     c.shapes = root.has("shapes") ? root.integer<int>("shapes", {.min = 0}) : -1;
     if (c.shapes > c.options.modes) root.fail("shapes", fmt::format("must be <= modes ({}), got {}", c.options.modes, c.shapes));
 
@@ -171,6 +169,16 @@ std::string element_type(const CasePart& p, const ElementBlock& block) {
 
 }  // namespace
 
+SolidOptions solid_options(const ModalCase& c) {
+    SolidOptions o;
+    o.mass = c.mass;
+    if (c.tet_mass_rule_as_ccx) {
+        o.tet10_mass_rule = solid::Tet10MassRule::FourPoint;
+        o.tet4_mass_rule = solid::Tet4MassRule::Centroid;
+    }
+    return o;
+}
+
 void build_case_model(const ModalCase& c, const Mesh& mesh, Model& model) {
     std::set<int> covered;
     for (const CasePart& p : c.parts) {
@@ -183,7 +191,7 @@ void build_case_model(const ModalCase& c, const Mesh& mesh, Model& model) {
         for (int b : blocks) {
             const std::string type = element_type(p, mesh.blocks[b]);
             model.add_block(b, dofs_per_node(type),
-                            element_kernel(type, p.material, p.thickness, {.mass = c.mass, .tet10_mass_rule = c.tet10_mass}));
+                            element_kernel(type, p.material, p.thickness, solid_options(c)));
         }
         covered.insert(blocks.begin(), blocks.end());
     }
@@ -249,9 +257,10 @@ std::string export_case_deck(const ModalCase& c, const std::filesystem::path& pa
             d.sections.push_back({p.thickness > 0 ? deck::Section::Shell : deck::Section::Solid, elset,
                                   p.material.name, p.thickness});
             d.materials.emplace(p.material.name, p.material);
-            if (type == "C3D10" && c.tet10_mass == solid::Tet10MassRule::Exact)
-                notes += "note: part '" + p.name + "': ccx integrates the C3D10 mass with the 4-point rule, this case with the "
-                         "exact rule (tet10_mass = \"four_point\" matches ccx; the difference is up to 1e-3 on coarse meshes)\n";
+            if ((type == "C3D10" || type == "C3D4") && !c.tet_mass_rule_as_ccx && c.mass == solid::MassKind::Consistent)
+                notes += "note: part '" + p.name + "': ccx integrates the " + type + " mass with the stiffness rule, this case "
+                         "with the exact rule (tet_mass_rule = \"ccx\" matches ccx; the frequencies differ by up to 1e-3 for "
+                         "C3D10 and by percents for C3D4 on coarse meshes)\n";
             if (type == "S4")
                 notes += "note: part '" + p.name + "': ccx expands S4 shells into C3D8I bricks, this case uses MITC4 shells "
                          "(different formulations; the frequencies differ by up to about 1 % on converged meshes)\n";

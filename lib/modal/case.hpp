@@ -6,8 +6,8 @@
 //   modes = 30
 //   shift_hz = 0.0              # < 0 for a free structure (rigid-body modes), see modal.hpp
 //   mass = "consistent"         # or "lumped"
-//   tet10_mass = "exact"        # consistent tet10 mass rule: "exact" (degree 7) or "four_point"
-//                               # (the stiffness rule, as CalculiX's C3D10; see solid_elements.hpp)
+//   tet_mass_rule = "exact"     # consistent mass of tet4/tet10: "exact" or "ccx" (integrated with
+//                               # the stiffness rule, 1 / 4 points, as CalculiX's C3D4 / C3D10)
 //   output = "frame_modes"      # folder for frequencies.csv, modes.h5, modes.pvd (+ VTUs)
 //   shapes = 5                  # mode shapes written (VTU + modes.h5): the first 5; 0 = frequencies
 //                               # only; default all
@@ -43,14 +43,10 @@
 #include <vector>
 
 #include "assembly/dof_map.hpp"
+#include "assembly/model.hpp"
 #include "element/solid_elements.hpp"
 #include "material/elastic.hpp"
 #include "modal/modal.hpp"
-
-namespace fem {
-struct Mesh;
-class Model;
-}  // namespace fem
 
 namespace fem::modal {
 
@@ -73,7 +69,7 @@ struct ModalCase {
     std::filesystem::path mesh, output;
     ModalOptions options;
     solid::MassKind mass = solid::MassKind::Consistent;
-    solid::Tet10MassRule tet10_mass = solid::Tet10MassRule::Exact;
+    bool tet_mass_rule_as_ccx = false;  // tet_mass_rule = "ccx"
     int shapes = -1;  // mode shapes to write; < 0 all, 0 none
     std::vector<CasePart> parts;
     std::vector<CaseSupport> supports;
@@ -93,6 +89,8 @@ ModalCase parse_modal_case(std::string_view text, const std::string& source, con
 /// Unknown physical groups and blocks without a part are InputErrors.
 std::string run_modal_case(const ModalCase& c);
 
+/// The solid element options of a case (mass kind, tetrahedra mass rules).
+SolidOptions solid_options(const ModalCase& c);
 /// The model of a case on its mesh: each part's blocks with their element formulation, supports and
 /// couplings (what run_modal_case solves and export_case_deck writes).
 void build_case_model(const ModalCase& c, const Mesh& mesh, Model& model);

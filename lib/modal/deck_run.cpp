@@ -51,7 +51,9 @@ void build_deck_model(const deck::Deck& d, Model& model) {
         const std::string& type = d.block_types[b];
         const deck::Section& s = d.sections[d.block_section[b]];
         SolidOptions o;
-        o.tet10_mass_rule = solid::Tet10MassRule::FourPoint;  // ccx integrates the C3D10 mass with the stiffness rule
+        // ccx integrates the tetrahedra's mass with their stiffness rule (4 points C3D10, 1 point C3D4).
+        o.tet10_mass_rule = solid::Tet10MassRule::FourPoint;
+        o.tet4_mass_rule = solid::Tet4MassRule::Centroid;
         model.add_block(static_cast<int>(b), dofs_per_node(type), element_kernel(type, d.materials.at(s.material), s.thickness, o));
     }
     for (const deck::Boundary& b : d.boundaries) {

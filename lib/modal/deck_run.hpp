@@ -6,11 +6,14 @@
 // Element types and the formulation each gets (chosen so results compare with ccx element for
 // element; the peer tests in tests/deck measure the agreement):
 //
-//   C3D4    tet4, constant strain, consistent mass (exact)
+//   C3D4    tet4, constant strain; consistent mass with the stiffness's one point, as ccx
+//           (Tet4MassRule::Centroid; a case file gets the exact mass unless it asks for ccx's rule)
 //   C3D10   tet10, 4-point stiffness rule; consistent mass with the same 4-point rule, as ccx
-//           (Tet10MassRule::FourPoint; a case file may ask for the exact rule instead)
-//   C3D8    hex8, fully integrated trilinear brick (2x2x2 Gauss)
-//   C3D8I   hex8 with incompatible modes (Wilson-Taylor, statically condensed)
+//           (Tet10MassRule::FourPoint; likewise)
+//   C3D8    hex8, fully integrated trilinear brick (2x2x2 Gauss): the same element as ccx's
+//   C3D8I   hex8 with incompatible modes (Wilson-Taylor, statically condensed). ccx's C3D8I
+//           (shape8hu.f, three extra nodes per element) is a different incompatible-modes
+//           element: the frequencies differ by percents on coarse meshes (tests/deck)
 //   S4, S4R MITC4 shell, 6 DOF per node (ccx expands shells into C3D8I bricks: a different
 //           formulation; both converge to the same plate answer)
 #include <filesystem>
