@@ -692,8 +692,9 @@ void write_deck(const fs::path& path, const Deck& d, std::string_view heading) {
         out << "*BOUNDARY\n";
         for (const Boundary& b : d.boundaries) out << fmt::format("{}, {}, {}\n", id_of_node(b.node), b.first, b.last);
     }
+    if (!d.equations.empty()) out << "*EQUATION\n";
     for (const Equation& e : d.equations)
-        out << fmt::format("*EQUATION\n2\n{}, {}, 1., {}, {}, -1.\n", id_of_node(e.node_a), e.dof, id_of_node(e.node_b), e.dof);
+        out << fmt::format("2\n{}, {}, 1., {}, {}, -1.\n", id_of_node(e.node_a), e.dof, id_of_node(e.node_b), e.dof);
     out << fmt::format("*STEP\n*FREQUENCY\n{}\n*END STEP\n", d.frequency ? d.frequency->modes : 10);
     file.commit();
 }

@@ -11,6 +11,7 @@
 //   partly      the brick held only in z on its x = 0 face: four rigid-body modes
 //   equation    two bricks side by side whose interface nodes are tied by *EQUATION (coupled DOFs)
 //   s4          clamped square plate of S4 shells
+// and a case file exported with `fem-modal case.toml --export-deck` (below).
 // Tolerances (relative per mode): 1e-4 where the formulation is the same (ccx prints 7 digits and
 // converges its Lanczos to about 1e-6): C3D8, C3D10 and C3D4 (with ccx's mass rules, see
 // modal/deck_run.hpp), free and partly supported models, *EQUATION; measured: identical to the 7
@@ -25,7 +26,9 @@
 //         on 10 x 10: the two converge to the same plate).
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <string>
 #include <vector>
 
@@ -83,6 +86,41 @@ int compare(const fs::path& dir, const std::string& job, const deck::Deck& d, do
     return test::compare_with_ccx(f_ccx, f_ours, modes, tolerance, "ccx [Hz]", "fem-modal [Hz]", 1e-3);
 }
 
+// fem-modal case.toml --export-deck: a Gmsh tet10 cantilever case (support, a coupled tip face,
+// ccx's tet mass rule) exported as a deck that ccx runs; ccx's frequencies against fem-modal's own
+// run of the case (frequencies.csv), 1e-4.
+int exported_case(const fs::path& dir) {
+    const fs::path geo = dir / "export.geo", msh = dir / "export.msh";
+    std::ofstream(geo) << "SetFactory(\"OpenCASCADE\");\nBox(1) = {0, 0, 0, 0.4, 0.05, 0.08};\n"
+                          "Physical Volume(\"beam\") = {1};\nPhysical Surface(\"root\") = {1};\n"
+                          "Physical Surface(\"tip\") = {2};\nMesh.CharacteristicLengthMax = 0.025;\nMesh.ElementOrder = 2;\n";
+    const std::string cmd = "gmsh -3 '" + geo.string() + "' -format msh41 -o '" + msh.string() + "' -v 0 > /dev/null 2>&1";
+    if (std::system(cmd.c_str()) != 0) throw std::runtime_error("gmsh failed: " + cmd);
+    const fs::path toml = dir / "export.toml";
+    std::ofstream(toml) << "mesh = \"export.msh\"\nmodes = 8\nshapes = 0\ntet_mass_rule = \"ccx\"\noutput = \"export_fem\"\n"
+                           "[materials.steel]\nE = 210e9\nnu = 0.3\nrho = 7800.0\n"
+                           "[[parts]]\nname = \"beam\"\nmaterial = \"steel\"\n"
+                           "[[supports]]\nset = \"root\"\n[[couplings]]\nset = \"tip\"\n";
+    const std::string t = toml.string(), inp = (dir / "exported.inp").string();
+    const char* export_argv[] = {"fem-modal", t.c_str(), "--export-deck", inp.c_str()};
+    if (cli::modal_program(4, const_cast<char**>(export_argv)) != 0) return 1;
+    test::run_ccx(dir, "exported");
+    const auto f_ccx = test::read_ccx_frequencies(dir / "exported.dat");
+    const char* run_argv[] = {"fem-modal", t.c_str()};
+    if (cli::modal_program(2, const_cast<char**>(run_argv)) != 0) return 1;
+    std::vector<double> f_ours;
+    std::ifstream csv(dir / "export_fem" / "frequencies.csv");
+    std::string line;
+    std::getline(csv, line);  // header
+    while (std::getline(csv, line)) f_ours.push_back(std::stod(line.substr(line.find(',') + 1)));
+    if (f_ccx.size() != 8 || f_ours.size() != 8) {
+        std::printf("exported case: ccx gave %zu, fem-modal %zu frequencies, expected 8\n", f_ccx.size(), f_ours.size());
+        return 1;
+    }
+    std::printf("\n== exported case (fem-modal case.toml --export-deck, then ccx)\n");
+    return test::compare_with_ccx(f_ccx, f_ours, 8, 1e-4, "ccx [Hz]", "fem-modal [Hz]");
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -122,6 +160,7 @@ int main(int argc, char** argv) {
             failed += compare(dir, "s4", make_deck(plate, "S4", plate.node_set("x0"), 1, 6, 6, 0.004), kS4,
                               "ccx: C3D8I expansion, ours: MITC4");
         }
+        failed += exported_case(dir);
         std::printf("\n%s\n", failed ? "peer decks FAILED" : "peer decks passed");
         return failed ? 1 : 0;
     });
