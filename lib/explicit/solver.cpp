@@ -826,6 +826,15 @@ void ExplicitSolver::write_vtu(double t) {
             v.values.push_back(s_.v[i][d]);
         }
     data.point_fields = {std::move(u), std::move(v)};
+    // The force providers' nodal fields (contact pressure), summed over providers by name.
+    std::map<std::string, std::vector<double>> nodal;
+    for (const auto& p : model_.force_providers())
+        for (auto& [name, values] : p->point_fields(s_)) {
+            auto& sum = nodal[name];
+            if (sum.empty()) sum.assign(s_.node_count(), 0.0);
+            for (int i = 0; i < s_.node_count(); ++i) sum[i] += values[i];
+        }
+    for (auto& [name, values] : nodal) data.point_fields.push_back({name, 1, std::move(values)});
     // One stress per element, in block order (blocks without a group: zero).
     const Mesh& mesh = model_.mesh();
     std::vector<std::vector<double>> per_block(mesh.blocks.size());
@@ -1499,7 +1508,7 @@ RunSummary ExplicitSolver::run() {
     progress.finish();
     // Ctrl-C: the outputs below are written for the state reached, marked partial, then Interrupted.
     const bool interrupted = interrupt_requested() && t_ < opt_.end_time - tiny;
-    const std::string partial =
+    const std::string partial_note =
         interrupted ? fmt::format("partial: interrupted (Ctrl-C) at t = {:.6g} s of {:.6g} s, step {}", t_, opt_.end_time, step_)
                     : "";
     if (pvd_ && next_vtu_ > t_) {  // the last state, unless just written
@@ -1573,14 +1582,14 @@ RunSummary ExplicitSolver::run() {
         nlohmann::json summary = summary_.to_json();
         for (const char* timing : {"wall_s", "element_cycles_per_s", "threads"}) summary.erase(timing);
         w.attribute("/", "summary", summary.dump());
-        if (interrupted) w.attribute("/", "partial", partial);
+        if (interrupted) w.attribute("/", "partial", partial_note);
         w.commit();
     }
     finish_timing();  // with the HDF5 file
-    if (opt_.print_summary) std::cout << summary_.text() << (interrupted ? partial + "\n" : "") << std::flush;
+    if (opt_.print_summary) std::cout << summary_.text() << (interrupted ? partial_note + "\n" : "") << std::flush;
     if (interrupted) {
         clear_interrupt();
-        throw Interrupted(fmt::format("explicit run '{}': {}{}{}", opt_.name, partial,
+        throw Interrupted(fmt::format("explicit run '{}': {}{}{}", opt_.name, partial_note,
                                       opt_.h5_path.empty() ? "" : "; histories in " + opt_.h5_path.string(),
                                       opt_.pvd_path.empty() ? "" : "; states in " + opt_.pvd_path.string()));
     }
