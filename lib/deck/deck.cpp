@@ -288,9 +288,6 @@ private:
         const std::string type = upper(kw.require("TYPE"));
         const auto& types = supported_element_types();
         if (std::find(types.begin(), types.end(), type) == types.end()) {
-            if (type == "C3D20" || type == "C3D20R")
-                input::fail(kw.where, "*ELEMENT: element type " + type +
-                                          " (20-node brick) is not implemented yet; supported: " + input::one_of(types));
             input::fail(kw.where, "*ELEMENT: unknown element type '" + type + "'" + input::did_you_mean(type, types) +
                                       "; supported: " + input::one_of(types));
         }
@@ -624,7 +621,7 @@ std::string number(double v) { return fmt::format("{:.17g}", v); }
 }  // namespace
 
 const std::vector<std::string>& supported_element_types() {
-    static const std::vector<std::string> types = {"C3D4", "C3D10", "C3D8", "C3D8I", "S4", "S4R"};
+    static const std::vector<std::string> types = {"C3D4", "C3D10", "C3D8", "C3D8I", "C3D20", "C3D20R", "S4", "S4R"};
     return types;
 }
 
@@ -632,6 +629,7 @@ ElementShape shape_of_type(std::string_view type) {
     if (type == "C3D4") return ElementShape::Tet4;
     if (type == "C3D10") return ElementShape::Tet10;
     if (type == "C3D8" || type == "C3D8I") return ElementShape::Hex8;
+    if (type == "C3D20" || type == "C3D20R") return ElementShape::Hex20;
     if (type == "S4" || type == "S4R") return ElementShape::Quad4;
     throw InputError("deck element type '" + std::string(type) + "' is not supported; supported: " +
                      input::one_of(supported_element_types()));

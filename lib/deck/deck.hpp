@@ -7,8 +7,7 @@
 // on the next line; data lines of an element continue while nodes are missing):
 //
 //   *NODE [, NSET=n]                     id, x, y, z
-//   *ELEMENT, TYPE=t [, ELSET=e]         id, node ...   t: C3D4 C3D10 C3D8 C3D8I S4 S4R (C3D20,
-//                                                       C3D20R: refused until the 20-node brick exists)
+//   *ELEMENT, TYPE=t [, ELSET=e]         id, node ...   t: C3D4 C3D10 C3D8 C3D8I C3D20 C3D20R S4 S4R
 //   *NSET, NSET=n [, GENERATE]           ids or set names; GENERATE: first, last[, step]
 //   *ELSET, ELSET=e [, GENERATE]         the same for elements
 //   *INCLUDE, INPUT=file                 relative to the including file

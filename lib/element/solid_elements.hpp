@@ -62,6 +62,17 @@ enum class Tet4MassRule {
 Eigen::MatrixXd tet4_mass(std::span<const Vec3> x, double density, MassKind kind = MassKind::Consistent,
                           Tet4MassRule rule = Tet4MassRule::Exact);
 
+/// Hex20 (20-node serendipity brick, CalculiX C3D20 / C3D20R; node order of ElementShape::Hex20)
+/// stiffness (60 x 60): 3x3x3 Gauss (full), or 2x2x2 (reduced: the C3D20R rule, exact for a
+/// parallelepiped's constant-strain states; it leaves one spurious zero-energy mode per element that
+/// neighbours usually suppress). Throws InputError for a non-positive Jacobian.
+Eigen::MatrixXd hex20_stiffness(std::span<const Vec3> x, const ElasticMaterial& m, bool reduced = false);
+/// Hex20 mass (60 x 60): consistent with the stiffness rule (3x3x3 exact for parallelepipeds; 2x2x2
+/// with reduced, as CalculiX integrates C3D20R's mass), or HRZ-lumped (the corner row sums are
+/// negative, as for tet10).
+Eigen::MatrixXd hex20_mass(std::span<const Vec3> x, double density, MassKind kind = MassKind::Consistent,
+                           bool reduced = false);
+
 /// Volumes by the element's own mapping (for mass checks).
 double hex8_volume(std::span<const Vec3> x);
 double tet10_volume(std::span<const Vec3> x);

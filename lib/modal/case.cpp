@@ -110,7 +110,7 @@ ModalCase from_document(const input::TomlDocument& doc, const std::string& stem)
         p.material = it->second;
         p.thickness = t.real_or("thickness", 0.0, input::Range::positive());
         if (t.has("element")) {
-            p.element = t.choice("element", {"C3D8I", "C3D8", "C3D10", "C3D4", "S4"});
+            p.element = t.choice("element", {"C3D8I", "C3D8", "C3D20", "C3D20R", "C3D10", "C3D4", "S4"});
             if ((p.element == "S4") != (p.thickness > 0))
                 t.fail("element", p.element == "S4" ? "S4 shells need a thickness" : "a part with a thickness is a shell (S4)");
         }

@@ -27,6 +27,7 @@ std::string fortran_e(double v) {
 std::vector<std::string> element_types_for(ElementShape shape) {
     switch (shape) {
         case ElementShape::Hex8: return {"C3D8I", "C3D8"};
+        case ElementShape::Hex20: return {"C3D20", "C3D20R"};
         case ElementShape::Tet10: return {"C3D10"};
         case ElementShape::Tet4: return {"C3D4"};
         case ElementShape::Quad4: return {"S4"};
@@ -43,6 +44,7 @@ ElementKernel element_kernel(std::string_view type, const ElasticMaterial& m, do
         return shell_kernel(thickness, m, o.mass);
     }
     if (type == "C3D8" || type == "C3D8I") o.incompatible_modes = type == "C3D8I";
+    if (type == "C3D20" || type == "C3D20R") o.hex20_reduced = type == "C3D20R";
     return solid_kernel(deck::shape_of_type(type), m, o);
 }
 

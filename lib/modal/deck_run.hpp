@@ -14,6 +14,8 @@
 //   C3D8I   hex8 with incompatible modes (Wilson-Taylor, statically condensed). ccx's C3D8I
 //           (shape8hu.f, three extra nodes per element) is a different incompatible-modes
 //           element: the frequencies differ by percents on coarse meshes (tests/deck)
+//   C3D20   hex20 serendipity brick, 3x3x3 Gauss for stiffness and mass
+//   C3D20R  the same with 2x2x2 Gauss for both, as ccx
 //   S4, S4R MITC4 shell, 6 DOF per node (ccx expands shells into C3D8I bricks: a different
 //           formulation; both converge to the same plate answer)
 #include <filesystem>

@@ -5,6 +5,8 @@
 // The decks (written with deck::write_deck from generated meshes, then read back by both programs):
 //   c3d8        clamped brick cantilever, fully integrated trilinear hexahedra
 //   c3d8i       the same with incompatible modes
+//   c3d20       the brick of 20-node hexahedra (6 x 1 x 2), full integration
+//   c3d20r      the same, reduced integration
 //   c3d10       clamped tet10 cantilever (hexahedra split into six tets)
 //   c3d4        clamped tet4 cantilever
 //   free_c3d8   the brick with no support at all: six rigid-body modes, no shift asked
@@ -13,7 +15,7 @@
 //   s4          clamped square plate of S4 shells
 // and a case file exported with `fem-modal case.toml --export-deck` (below).
 // Tolerances (relative per mode): 1e-4 where the formulation is the same (ccx prints 7 digits and
-// converges its Lanczos to about 1e-6): C3D8, C3D10 and C3D4 (with ccx's mass rules, see
+// converges its Lanczos to about 1e-6): C3D8, C3D20, C3D20R, C3D10 and C3D4 (with ccx's mass rules, see
 // modal/deck_run.hpp), free and partly supported models, *EQUATION; measured: identical to the 7
 // digits ccx prints. Rigid-body modes (|f| below 1e-3 of the highest frequency compared) must be
 // rigid in both. Different formulations, with the measured gap:
@@ -135,6 +137,10 @@ int main(int argc, char** argv) {
         failed += compare(dir, "free_c3d8", make_deck(hex, "C3D8", {}, 1, 3, 10), 1e-4, "no supports: 6 rigid-body modes");
         failed += compare(dir, "partly", make_deck(hex, "C3D8", x0, 3, 3, 8), 1e-4,
                           "held in z only on x = 0: 4 rigid-body modes (x, y, rotations about y and z)");
+        const Mesh hex20 = box_hex20(0.5, 0.04, 0.06, 6, 1, 2, "EALL");
+        failed += compare(dir, "c3d20", make_deck(hex20, "C3D20", hex20.node_set("x0"), 1, 3, 8), 1e-4, "same formulation");
+        failed += compare(dir, "c3d20r", make_deck(hex20, "C3D20R", hex20.node_set("x0"), 1, 3, 8), 1e-4,
+                          "same formulation (2x2x2 Gauss for stiffness and mass)");
         const Mesh tet10 = box_tets(0.5, 0.04, 0.06, 8, 2, 2, ElementShape::Tet10, "EALL");
         failed += compare(dir, "c3d10", make_deck(tet10, "C3D10", tet10.node_set("x0"), 1, 3, 8), 1e-4,
                           "same formulation, ccx's 4-point mass rule");

@@ -166,8 +166,9 @@ TEST(Deck, BadInputIsNamedWithFileAndLine) {
     auto e = error_of(edited("type=c3d8,", "type=C3D6,"));
     EXPECT_NE(e.find("model.inp:20"), std::string::npos) << e;
     EXPECT_NE(e.find("unknown element type 'C3D6'"), std::string::npos) << e;
-    e = error_of(edited("type=c3d8,", "type=C3D20,"));
-    EXPECT_NE(e.find("C3D20"), std::string::npos) << e;
+    e = error_of(edited("type=c3d8,", "type=C3D20,"));  // a C3D20 needs 20 nodes
+    EXPECT_NE(e.find("model.inp:21: *ELEMENT, TYPE=C3D20: an element needs its number and 20 nodes, got 9 fields"),
+              std::string::npos) << e;
     // Keywords and parameters, with "did you mean".
     e = error_of(edited("*FREQUENCY\n", "*FREQUENCE\n"));
     EXPECT_NE(e.find("model.inp:41: unsupported keyword '*FREQUENCE' (did you mean '*FREQUENCY'?)"), std::string::npos) << e;
