@@ -111,6 +111,13 @@ Eigen::MatrixXd expand3(const Eigen::MatrixXd& m) {
 
 const double kGauss2 = 1.0 / std::sqrt(3.0);
 
+// HRZ lumping (Hinton, Rock & Zienkiewicz 1976): keep the diagonal of a consistent scalar mass,
+// scaled to the element mass (positive where quadratic elements' row sums are not).
+Eigen::MatrixXd hrz_lumped(const Eigen::MatrixXd& m) {
+    const Eigen::VectorXd d = m.diagonal() * (m.sum() / m.diagonal().sum());
+    return d.asDiagonal();
+}
+
 // 4-point tet rule (degree 2): points at (a, b, b) permutations, a = (5 + 3 sqrt 5) / 20,
 // b = (5 - sqrt 5) / 20, weight 1/24 each (reference volume 1/6).
 struct TetPoint { double r, s, t, w; };
@@ -224,12 +231,7 @@ Eigen::MatrixXd tet10_mass(std::span<const Vec3> x, double density, MassKind kin
         const double det = physical_derivatives<10>(X, e.dn, g, "tet10 element");
         m.noalias() += (density * det * p.w) * e.n * e.n.transpose();
     }
-    if (kind == MassKind::Lumped) {
-        // HRZ (Hinton, Rock & Zienkiewicz 1976): keep the diagonal, scale it to the element mass.
-        const double total = m.sum();
-        const Eigen::VectorXd d = m.diagonal() * (total / m.diagonal().sum());
-        m = d.asDiagonal();
-    }
+    if (kind == MassKind::Lumped) m = hrz_lumped(m);
     return expand3(m);
 }
 
@@ -276,43 +278,40 @@ Gauss1D gauss_1d(bool reduced) {
     return {{-g, 0, g}, {5.0 / 9, 8.0 / 9, 5.0 / 9}};
 }
 
-}  // namespace
-
-Eigen::MatrixXd hex20_stiffness(std::span<const Vec3> x, const ElasticMaterial& m, bool reduced) {
-    const auto X = coordinates<20>(x, "hex20 element");
-    const Mat6 D = elasticity_matrix(m);
+// Calls f(shape functions, physical derivatives, det J x weight) at each point of the product rule.
+template <class F>
+void for_each_hex20_point(const Eigen::Matrix<double, 3, 20>& X, bool reduced, F f) {
     const Gauss1D g = gauss_1d(reduced);
-    Eigen::Matrix<double, 60, 60> K = Eigen::Matrix<double, 60, 60>::Zero();
     for (std::size_t i = 0; i < g.x.size(); ++i)
         for (std::size_t j = 0; j < g.x.size(); ++j)
             for (std::size_t k = 0; k < g.x.size(); ++k) {
                 const ShapeEval<20> e = hex20_shape(g.x[i], g.x[j], g.x[k]);
                 Eigen::Matrix<double, 3, 20> gr;
                 const double det = physical_derivatives<20>(X, e.dn, gr, "hex20 element");
-                const Eigen::Matrix<double, 6, 60> B = strain_matrix<20>(gr);
-                K.noalias() += B.transpose() * (D * B) * (det * g.w[i] * g.w[j] * g.w[k]);
+                f(e, gr, det * g.w[i] * g.w[j] * g.w[k]);
             }
+}
+
+}  // namespace
+
+Eigen::MatrixXd hex20_stiffness(std::span<const Vec3> x, const ElasticMaterial& m, bool reduced) {
+    const Mat6 D = elasticity_matrix(m);
+    Eigen::Matrix<double, 60, 60> K = Eigen::Matrix<double, 60, 60>::Zero();
+    for_each_hex20_point(coordinates<20>(x, "hex20 element"), reduced,
+                         [&](const ShapeEval<20>&, const Eigen::Matrix<double, 3, 20>& gr, double dv) {
+                             const Eigen::Matrix<double, 6, 60> B = strain_matrix<20>(gr);
+                             K.noalias() += B.transpose() * (D * B) * dv;
+                         });
     return Eigen::MatrixXd(0.5 * (K + K.transpose()));
 }
 
 Eigen::MatrixXd hex20_mass(std::span<const Vec3> x, double density, MassKind kind, bool reduced) {
-    const auto X = coordinates<20>(x, "hex20 element");
-    const Gauss1D g = gauss_1d(reduced);
     Eigen::MatrixXd m = Eigen::MatrixXd::Zero(20, 20);
-    for (std::size_t i = 0; i < g.x.size(); ++i)
-        for (std::size_t j = 0; j < g.x.size(); ++j)
-            for (std::size_t k = 0; k < g.x.size(); ++k) {
-                const ShapeEval<20> e = hex20_shape(g.x[i], g.x[j], g.x[k]);
-                Eigen::Matrix<double, 3, 20> gr;
-                const double det = physical_derivatives<20>(X, e.dn, gr, "hex20 element");
-                m.noalias() += (density * det * g.w[i] * g.w[j] * g.w[k]) * e.n * e.n.transpose();
-            }
-    if (kind == MassKind::Lumped) {
-        // HRZ, as for tet10: the diagonal scaled to the element mass.
-        const double total = m.sum();
-        const Eigen::VectorXd d = m.diagonal() * (total / m.diagonal().sum());
-        m = d.asDiagonal();
-    }
+    for_each_hex20_point(coordinates<20>(x, "hex20 element"), reduced,
+                         [&](const ShapeEval<20>& e, const Eigen::Matrix<double, 3, 20>&, double dv) {
+                             m.noalias() += (density * dv) * e.n * e.n.transpose();
+                         });
+    if (kind == MassKind::Lumped) m = hrz_lumped(m);  // corner row sums are negative, as for tet10
     return expand3(m);
 }
 
