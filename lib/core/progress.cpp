@@ -3,6 +3,7 @@
 #include <atomic>
 #include <cmath>
 #include <csignal>
+#include <mutex>
 
 #include <unistd.h>
 
@@ -13,7 +14,8 @@ namespace {
 
 std::atomic<bool> g_quiet{false};
 volatile std::sig_atomic_t g_interrupt = 0;
-std::atomic<int> g_guards{0};
+std::mutex g_guard_mutex;  // guards may start and end on several threads (cases run at once)
+int g_guards = 0;
 struct sigaction g_previous;
 
 extern "C" void on_sigint(int) {
@@ -78,6 +80,7 @@ void Progress::finish() {
 void Progress::set_quiet(bool quiet) { g_quiet = quiet; }
 
 InterruptGuard::InterruptGuard() {
+    const std::lock_guard<std::mutex> lock(g_guard_mutex);
     if (g_guards++ == 0) {
         struct sigaction sa {};
         sa.sa_handler = on_sigint;
@@ -87,6 +90,7 @@ InterruptGuard::InterruptGuard() {
 }
 
 InterruptGuard::~InterruptGuard() {
+    const std::lock_guard<std::mutex> lock(g_guard_mutex);
     if (--g_guards == 0) sigaction(SIGINT, &g_previous, nullptr);
 }
 
