@@ -114,7 +114,6 @@ int topopt_program(int argc, char** argv) {
                                  r.interrupted ? ", PARTIAL.txt" : "",
                                  std::chrono::duration<double>(std::chrono::steady_clock::now() - output_t0).count());
         if (r.interrupted) {
-            fem::clear_interrupt();
             throw fem::Interrupted(fmt::format("stopped after iteration {} of at most {}; the design reached (marked partial "
                                                "in PARTIAL.txt) is in {}",
                                                r.iterations, c.settings.max_iterations, out.path().string()));

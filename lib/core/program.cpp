@@ -18,6 +18,7 @@ int run_program(const char* program_name, const std::function<int()>& body) {
         std::cerr << program_name << ": solver error: " << e.what() << '\n';
         return 3;
     } catch (const Interrupted& e) {
+        clear_interrupt();  // handled (a test may run the program again in-process)
         std::cerr << program_name << ": interrupted: " << e.what() << '\n';
         return 130;  // 128 + SIGINT, as a shell reports a process killed by Ctrl-C
     } catch (const std::exception& e) {

@@ -15,9 +15,10 @@
 //   progress.finish();
 //
 // Interrupts: while an InterruptGuard lives, the first SIGINT only sets a flag that the run polls
-// (interrupt_requested()); the run stops at the end of its cycle or iteration, writes what it has
-// with a note that it is partial, and throws Interrupted, which run_program turns into exit status
-// 130 (128 + SIGINT, the shell's convention). A second Ctrl-C kills the process as usual.
+// (interrupt_requested()); every run going on stops at the end of its cycle or iteration, writes
+// what it has with a note that it is partial, and throws Interrupted, which run_program turns into
+// exit status 130 (128 + SIGINT, the shell's convention) and clears the flag. A second Ctrl-C kills
+// the process as usual.
 #include <chrono>
 #include <cstdio>
 #include <stdexcept>

@@ -1593,8 +1593,7 @@ RunSummary ExplicitSolver::run() {
     }
     finish_timing();  // with the HDF5 file
     if (opt_.print_summary) std::cout << summary_.text() << (interrupted ? partial_note + "\n" : "") << std::flush;
-    if (interrupted) {
-        clear_interrupt();
+    if (interrupted) {  // the flag stays set: other runs going on at once stop as well
         throw Interrupted(fmt::format("explicit run '{}': {}{}{}", opt_.name, partial_note,
                                       opt_.h5_path.empty() ? "" : "; histories in " + opt_.h5_path.string(),
                                       opt_.pvd_path.empty() ? "" : "; states in " + opt_.pvd_path.string()));
