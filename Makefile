@@ -27,7 +27,7 @@ DEB_PACKAGES := cmake make g++ pkg-config \
   gnuplot-nox gmsh libgmsh-dev calculix-ccx \
   libsuitesparse-dev libopenblas0-serial \
   libopenmpi-dev openmpi-bin \
-  clang libclang-rt-14-dev chromium \
+  clang libclang-rt-14-dev chromium ccache \
   python3-meshio python3-h5py
 
 empty :=
@@ -59,12 +59,18 @@ deps:
 	  echo "deps: missing Debian packages; run:"; echo "  sudo apt-get install -y$$missing"; exit 1; \
 	fi
 
+# ccache (when installed: make deps installs it) keeps compiled objects across build folders and
+# clean clones on this machine, so a rebuild after `make clean` or in a fresh clone recompiles only
+# what changed. Paths below the project are hashed relative to it (a clone elsewhere hits the same cache).
+export CCACHE_BASEDIR ?= $(CURDIR)
+CCACHE_LAUNCHER := $(if $(shell command -v ccache 2>/dev/null),-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
+
 # Configure once; the stamp is written only when CMake succeeded, so a configure that failed (say,
 # `make <study>` before the packages were installed) is simply run again by the next make instead of
 # leaving a half-made build folder that every later make trips over. CMake retries whatever it did
 # not find. tests/makefile/configure_recovers.sh checks this in a scratch copy.
 $(BUILD)/.configured:
-	cmake -S . -B $(BUILD) $(CMAKE_FLAGS)
+	cmake -S . -B $(BUILD) $(CMAKE_FLAGS) $(CCACHE_LAUNCHER)
 	@touch $@
 
 configure: $(BUILD)/.configured

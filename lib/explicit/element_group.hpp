@@ -59,6 +59,18 @@ struct GroupForceResult {
     double max_von_mises = 0.0;      // over the group (beams: outer-fibre stress)
 };
 
+/// What one chunk of a group's elements adds up during a force pass (groups run their chunks in
+/// parallel, each into its own ChunkSums; elements indexed in the group's kernel order).
+struct ChunkSums {
+    double ie = 0, hg = 0, visc = 0, vm_sq = 0, dt = 0;  // energies, viscous power, max squared von Mises, min step
+    int dt_k = -1, bad_k = -1;                           // kernel index of the step's element, first bad element
+};
+
+/// The group's result from its chunks' sums, combined in the fixed chunk order (the same bits on
+/// any number of threads); order maps kernel index -> element index within the block. Without
+/// compute_dt the step is NaN (not computed this pass).
+GroupForceResult combine_chunks(const std::vector<ChunkSums>& chunks, const std::vector<int>& order, bool compute_dt);
+
 class ElementGroup {
 public:
     virtual ~ElementGroup() = default;

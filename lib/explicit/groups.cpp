@@ -12,6 +12,26 @@
 
 namespace fem {
 
+GroupForceResult combine_chunks(const std::vector<ChunkSums>& chunks, const std::vector<int>& order, bool compute_dt) {
+    GroupForceResult out;
+    int dt_k = -1, bad_k = -1;
+    for (const auto& p : chunks) {  // fixed (chunk) order: the same bits on any number of threads
+        out.internal_energy += p.ie;
+        out.hourglass_energy += p.hg;
+        out.viscous_power += p.visc;
+        out.max_von_mises = std::max(out.max_von_mises, std::sqrt(p.vm_sq));  // sqrt is monotone: max commutes
+        if (p.bad_k >= 0 && bad_k < 0) bad_k = p.bad_k;
+        if (p.dt < out.dt_min) {
+            out.dt_min = p.dt;
+            dt_k = p.dt_k;
+        }
+    }
+    out.bad_element = bad_k >= 0 ? order[bad_k] : -1;
+    out.dt_element = dt_k >= 0 ? order[dt_k] : -1;
+    if (!compute_dt) out.dt_min = std::numeric_limits<double>::quiet_NaN();
+    return out;
+}
+
 // --- Hex8Group ---------------------------------------------------------------------------------------
 
 Hex8Group::Hex8Group(const Mesh& mesh, int block, const ElasticMaterial& material, const Hex8Options& options)
@@ -111,7 +131,7 @@ GroupForceResult Hex8Group::internal_forces(NodalState& s, bool compute_dt) {
     // lane (the kernel does per lane exactly what it does for one element: the results do not
     // depend on the blocking). Node a's component i of the element in lane l is at [i][a][l].
     auto run_chunk = [&](int c) {
-        Partial p;
+        ChunkSums p;
         p.dt = std::numeric_limits<double>::infinity();
         constexpr int W = hex8::kLanes;
         hex8::Hex8KernelResultBlock r;
@@ -191,23 +211,7 @@ GroupForceResult Hex8Group::internal_forces(NodalState& s, bool compute_dt) {
         partial_[c] = p;
     };
     colouring_.for_each_chunk(n >= par::kParallelMin, run_chunk);
-    GroupForceResult out;
-    int dt_k = -1, bad_k = -1;
-    for (const auto& p : partial_) {  // fixed (chunk) order
-        out.internal_energy += p.ie;
-        out.hourglass_energy += p.hg;
-        out.viscous_power += p.visc;
-        out.max_von_mises = std::max(out.max_von_mises, std::sqrt(p.vm_sq));  // sqrt is monotone: max commutes
-        if (p.bad_k >= 0 && bad_k < 0) bad_k = p.bad_k;
-        if (p.dt < out.dt_min) {
-            out.dt_min = p.dt;
-            dt_k = p.dt_k;
-        }
-    }
-    out.bad_element = bad_k >= 0 ? order_[bad_k] : -1;
-    out.dt_element = dt_k >= 0 ? order_[dt_k] : -1;
-    if (!compute_dt) out.dt_min = std::numeric_limits<double>::quiet_NaN();
-    return out;
+    return combine_chunks(partial_, order_, compute_dt);
 }
 
 // --- BeamGroup ---------------------------------------------------------------------------------------

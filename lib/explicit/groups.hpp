@@ -74,11 +74,7 @@ private:
     // that chunks of one colour share no node; each element adds its forces straight into the
     // nodal forces (see par::ChunkColouring).
     par::ChunkColouring colouring_;
-    struct Partial {
-        double ie = 0, hg = 0, visc = 0, vm_sq = 0, dt = 0;
-        int dt_k = -1, bad_k = -1;
-    };
-    std::vector<Partial> partial_;  // one per chunk (kept: no allocation per cycle)
+    std::vector<ChunkSums> partial_;  // one per chunk (kept: no allocation per cycle)
 };
 
 /// Beam cross-section and orientation of a beam part (LS-DYNA *SECTION_BEAM).

@@ -269,7 +269,7 @@ GroupForceResult ShellGroup::internal_forces(NodalState& s, bool compute_dt) {
     }
     const shellbt::Constants& c = consts_;
     auto run_chunk = [&](int chunk) {
-        Partial p;
+        ChunkSums p;
         p.dt = std::numeric_limits<double>::infinity();
         std::array<Vec3, 4> xm, xe, du, dth;
         shellbt::Result r;
@@ -326,22 +326,7 @@ GroupForceResult ShellGroup::internal_forces(NodalState& s, bool compute_dt) {
             for (int i = 0; i < m; ++i) run_chunk(list[i]);
         }
     }
-    GroupForceResult out;
-    int dt_k = -1, bad_k = -1;
-    for (const auto& p : partial_) {  // fixed (chunk) order: the same bits on any number of threads
-        out.internal_energy += p.ie;
-        out.hourglass_energy += p.hg;
-        out.max_von_mises = std::max(out.max_von_mises, std::sqrt(p.vm_sq));
-        if (p.bad_k >= 0 && bad_k < 0) bad_k = p.bad_k;
-        if (p.dt < out.dt_min) {
-            out.dt_min = p.dt;
-            dt_k = p.dt_k;
-        }
-    }
-    out.bad_element = bad_k >= 0 ? order_[bad_k] : -1;
-    out.dt_element = dt_k >= 0 ? order_[dt_k] : -1;
-    if (!compute_dt) out.dt_min = std::numeric_limits<double>::quiet_NaN();
-    return out;
+    return combine_chunks(partial_, order_, compute_dt);
 }
 
 }  // namespace fem

@@ -113,11 +113,7 @@ private:
     std::vector<Vec3> X_, x_prev_, x_mid_, du_, dtheta_;  // X_: reference positions
     std::vector<Mat3> R_prev_;
     par::ChunkColouring colouring_;
-    struct Partial {
-        double ie = 0, hg = 0, vm_sq = 0, dt = 0;
-        int dt_k = -1, bad_k = -1;
-    };
-    std::vector<Partial> partial_;
+    std::vector<ChunkSums> partial_;
 };
 
 }  // namespace fem

@@ -153,7 +153,7 @@ GroupForceResult TetGroup<N, Q>::internal_forces(NodalState& s, bool compute_dt)
 
     // One chunk of kChunk consecutive kernel-order elements, in blocks of W elements, one per lane.
     auto run_chunk = [&](int c) {
-        Partial p;
+        ChunkSums p;
         p.dt = std::numeric_limits<double>::infinity();
         tet::TetKernelResultBlock<N> r;
         alignas(hex8::kLanesAlign) hex8::Lanes x[3][4], u[3][N], v[3][N], dt_block;  // see hex8::Lanes
@@ -227,22 +227,7 @@ GroupForceResult TetGroup<N, Q>::internal_forces(NodalState& s, bool compute_dt)
         partial_[c] = p;
     };
     colouring_.for_each_chunk(n >= kTetParallelMin, run_chunk);
-    GroupForceResult out;
-    int dt_k = -1, bad_k = -1;
-    for (const auto& p : partial_) {  // fixed (chunk) order: the same bits on any number of threads
-        out.internal_energy += p.ie;
-        out.viscous_power += p.visc;
-        out.max_von_mises = std::max(out.max_von_mises, std::sqrt(p.vm_sq));  // sqrt is monotone: max commutes
-        if (p.bad_k >= 0 && bad_k < 0) bad_k = p.bad_k;
-        if (p.dt < out.dt_min) {
-            out.dt_min = p.dt;
-            dt_k = p.dt_k;
-        }
-    }
-    out.bad_element = bad_k >= 0 ? order_[bad_k] : -1;
-    out.dt_element = dt_k >= 0 ? order_[dt_k] : -1;
-    if (!compute_dt) out.dt_min = std::numeric_limits<double>::quiet_NaN();
-    return out;
+    return combine_chunks(partial_, order_, compute_dt);
 }
 
 template class TetGroup<4, 1>;

@@ -104,11 +104,7 @@ private:
     std::vector<double> von_mises_sq_;         // kernel order (sqrt on output)
     double dt_wave_speed_ = 0.0;               // Table 2-1 dilatational wave speed
     par::ChunkColouring colouring_;
-    struct Partial {
-        double ie = 0, visc = 0, vm_sq = 0, dt = 0;
-        int dt_k = -1, bad_k = -1;
-    };
-    std::vector<Partial> partial_;  // one per chunk
+    std::vector<ChunkSums> partial_;  // one per chunk
 };
 
 using Tet4Group = TetGroup<4, 1>;
