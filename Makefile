@@ -6,7 +6,7 @@
 #   make <study>  run one study and draw its figures (cfl_tables, portal_frame_modes, ...)
 #   make report   rebuild figures/REPORT.md and figures/REPORT.html from build/results
 #   make bench    the performance benchmarks
-#   make fuzz     libFuzzer targets for the Gmsh reader and the case-file readers (build-fuzz/, clang)
+#   make fuzz     libFuzzer targets for the Gmsh reader, the case-file readers and the deck reader (build-fuzz/, clang)
 #   make sanitize unit tests and the short studies under ASan + UBSan (build-sanitize/)
 #   make clean    remove build/ (and build-fuzz/, build-sanitize/)
 BUILD   ?= build
@@ -27,7 +27,8 @@ DEB_PACKAGES := cmake make g++ pkg-config \
   gnuplot-nox gmsh libgmsh-dev calculix-ccx \
   libsuitesparse-dev libopenblas0-serial \
   libopenmpi-dev openmpi-bin \
-  clang libclang-rt-14-dev chromium ccache
+  clang libclang-rt-14-dev chromium ccache \
+  python3-meshio python3-h5py
 
 empty :=
 space := $(empty) $(empty)
@@ -100,7 +101,7 @@ SANITIZER_ENV := ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:detect_stack_use_a
 # inputs it finds go to $(FUZZ_BUILD)/corpus/<target>). Crashes are written to $(FUZZ_BUILD)/.
 FUZZ_BUILD   ?= build-fuzz
 FUZZ_RUNS    ?= 100000
-FUZZ_TARGETS := gmsh modal_case topopt_case
+FUZZ_TARGETS := gmsh modal_case topopt_case deck
 fuzz: deps
 	@[ -f $(FUZZ_BUILD)/.configured ] || { cmake -S . -B $(FUZZ_BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo \
 	  -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ -DFEM_FUZZ=ON && touch $(FUZZ_BUILD)/.configured; }

@@ -65,6 +65,10 @@ public:
     Reduction reduce(const DofMap& dofs) const;
 
     bool empty() const { return fixes_.empty() && couplings_.empty(); }
+    /// The constraints as stated (for writers such as deck::write_deck): (node, components) fixed,
+    /// (nodes, components) coupled.
+    const std::vector<std::pair<int, DofMask>>& fixes() const { return fixes_; }
+    const std::vector<std::pair<std::vector<int>, DofMask>>& couplings() const { return couplings_; }
 
 private:
     std::vector<std::pair<int, DofMask>> fixes_;

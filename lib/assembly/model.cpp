@@ -22,9 +22,18 @@ ElementKernel solid_kernel(ElementShape shape, const ElasticMaterial& m, const S
             return [m, o](std::span<const Vec3> x, int) {
                 return ElementMatrices{solid::tet10_stiffness(x, m), solid::tet10_mass(x, m.density, o.mass, o.tet10_mass_rule)};
             };
+        case ElementShape::Hex20:
+            return [m, o](std::span<const Vec3> x, int) {
+                return ElementMatrices{solid::hex20_stiffness(x, m, o.hex20_reduced),
+                                       solid::hex20_mass(x, m.density, o.mass, o.hex20_reduced)};
+            };
+        case ElementShape::Tet4:
+            return [m, o](std::span<const Vec3> x, int) {
+                return ElementMatrices{solid::tet4_stiffness(x, m), solid::tet4_mass(x, m.density, o.mass, o.tet4_mass_rule)};
+            };
         default:
             throw InputError("no linear solid element for shape " + std::string(to_string(shape)) +
-                             " (the modal solver has hex8 and tet10)");
+                             " (the modal solver has hex8, hex20, tet4 and tet10)");
     }
 }
 

@@ -46,9 +46,11 @@ struct SolidOptions {
     solid::MassKind mass = solid::MassKind::Consistent;
     bool incompatible_modes = true;  // hex8 only
     solid::Tet10MassRule tet10_mass_rule = solid::Tet10MassRule::Exact;
+    solid::Tet4MassRule tet4_mass_rule = solid::Tet4MassRule::Exact;
+    bool hex20_reduced = false;  // hex20: 2x2x2 Gauss for stiffness and mass (C3D20R), else 3x3x3 (C3D20)
 };
 
-/// The kernel of a linear solid block (hex8 or tet10) of material m; InputError for other shapes.
+/// The kernel of a linear solid block (hex8, hex20, tet4 or tet10) of material m; InputError for other shapes.
 ElementKernel solid_kernel(ElementShape shape, const ElasticMaterial& m, const SolidOptions& options = {});
 
 /// The kernel of a MITC4 shell block (quad4, 6 DOFs per node; element/shell_mitc4.hpp) of thickness
@@ -101,6 +103,8 @@ public:
     AssembledSystem assemble() const;
 
     const Mesh& mesh() const { return mesh_; }
+    /// The supports and couplings stated so far.
+    const Constraints& constraints() const { return constraints_; }
 
 private:
     struct Entry {

@@ -15,6 +15,7 @@
 #include "check/cases.hpp"
 #include "check/run_health.hpp"
 #include "core/error.hpp"
+#include "core/progress.hpp"
 #include "core/program.hpp"
 #include "io/atomic_file.hpp"
 #include "io/gnuplot.hpp"
@@ -129,7 +130,7 @@ const std::vector<std::string>& study_order() {
 namespace {
 
 void usage(const std::string& name) {
-    std::cout << "usage: " << name << " [--results DIR] [--figures DIR] [--reference FILE] [--full]\n"
+    std::cout << "usage: " << name << " [--results DIR] [--figures DIR] [--reference FILE] [--full] [--jobs N] [--quiet]\n"
               << "  Runs the study, compares with reference/" << name << ".toml and writes DIR/checks.json.\n"
               << "  --results DIR    where data, checks.json and runs.json go (default build/results/" << name << ")\n"
               << "  --figures DIR    draw the figures there with gnuplot (default: no figures)\n"
@@ -137,7 +138,8 @@ void usage(const std::string& name) {
               << "  --full           also run the thesis-size runs that CTest leaves out (make all passes it;\n"
               << "                   the study's README says what they are); checks are the same\n"
               << "  --jobs N         independent cases run at once (default: FEM_JOBS, else the number of\n"
-              << "                   hardware threads; 1: one after another); results are the same\n";
+              << "                   hardware threads; 1: one after another); results are the same\n"
+              << "  --quiet          no progress lines of long runs on stderr (core/progress.hpp)\n";
 }
 
 std::string join_joined(const std::string& a, const std::string& b) {
@@ -162,6 +164,7 @@ Study::Study(std::string name, int argc, char** argv) : name_(std::move(name)) {
         else if (arg == "--figures") figures_dir_ = value();
         else if (arg == "--reference") reference_path = value();
         else if (arg == "--full") full_ = true;
+        else if (arg == "--quiet") Progress::set_quiet(true);
         else if (arg == "--jobs") {
             const std::string v = value();
             std::size_t end = 0;

@@ -330,4 +330,36 @@ Resultant resultant(std::span<const int> nodes, std::span<const Vec3> f, std::sp
     return r;
 }
 
+std::vector<double> ContactInterface::nodal_pressure(std::span<const Vec3> x) const {
+    const int node_count = static_cast<int>(x.size());
+    // Area vector of a face (quadrilateral: half the cross product of its diagonals).
+    auto area_vector = [&](const Segment& seg) -> Vec3 {
+        if (seg.count == 4) return 0.5 * (x[seg.n[2]] - x[seg.n[0]]).cross(x[seg.n[3]] - x[seg.n[1]]);
+        return 0.5 * (x[seg.n[1]] - x[seg.n[0]]).cross(x[seg.n[2]] - x[seg.n[0]]);
+    };
+    // Faces around each node of the slave surface (pass 0) and of the master surface (pass 1).
+    auto faces_of = [&](const ContactSurface& surface) {
+        std::vector<std::vector<int>> faces(node_count);
+        for (std::size_t f = 0; f < surface.segments.size(); ++f)
+            for (int k = 0; k < surface.segments[f].count; ++k)
+                if (surface.segments[f].n[k] >= 0 && surface.segments[f].n[k] < node_count)
+                    faces[surface.segments[f].n[k]].push_back(static_cast<int>(f));
+        return faces;
+    };
+    const auto slave_faces = faces_of(*slave_);
+    const auto master_faces = passes_.size() > 1 ? faces_of(*master_) : std::vector<std::vector<int>>(node_count);
+    std::vector<double> p(node_count, 0.0);
+    for (const ContactPoint& c : points_) {
+        if (c.node < 0 || c.node >= node_count) continue;
+        const ContactSurface& surface = c.pass == 0 ? *slave_ : *master_;
+        double area = 0.0;
+        for (int f : (c.pass == 0 ? slave_faces : master_faces)[c.node]) {
+            const Segment& seg = surface.segments[f];
+            area += std::abs(area_vector(seg).dot(c.normal)) / seg.count;
+        }
+        if (area > 0) p[c.node] += c.normal_force / area;
+    }
+    return p;
+}
+
 }  // namespace fem::contact

@@ -88,6 +88,11 @@ public:
     /// Its moment about `about` (for a rigid master: the reaction a transducer measures).
     Vec3 moment_on_master(const Vec3& about) const { return m_master_ - about.cross(f_master_); }
     const std::vector<ContactPoint>& contacts() const { return points_; }
+    /// Contact pressure [Pa] per mesh node at positions x (the last evaluation's contacts): each
+    /// contact's normal force over the node's tributary area on its own surface projected on the
+    /// contact normal (a quarter of each quadrilateral face around it, a third of each triangle, times
+    /// |n_face . n|: the faces at right angles to the contact bear nothing); 0 where no contact.
+    std::vector<double> nodal_pressure(std::span<const Vec3> x) const;
     /// True when the master is a rigid part.
     bool rigid_master() const { return master_->rigid; }
     /// Deepest penetration over all evaluations so far [m], and the deepest as a fraction of the slave

@@ -39,6 +39,10 @@ public:
     double stable_time_step(const NodalState& s) const override;
     double search_seconds() const override { return c_.search_seconds(); }
     ContactReport contact_report() const override;
+    /// "contact_pressure" (ContactInterface::nodal_pressure).
+    std::vector<std::pair<std::string, std::vector<double>>> point_fields(const NodalState& s) const override {
+        return {{"contact_pressure", c_.nodal_pressure(s.x)}};
+    }
     void save_state(io::H5Writer& w, const std::string& prefix) const override;
     void restore_state(const io::H5Reader& r, const std::string& prefix) override;
     ContactInterface& contact() { return c_; }

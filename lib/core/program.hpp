@@ -6,7 +6,8 @@
 namespace fem {
 
 /// Runs body(); returns its exit status, or 2 for an InputError (bad input, named in the message),
-/// 3 for a SolverError (a run that failed, with its diagnosis) and 4 for anything else.
+/// 3 for a SolverError (a run that failed, with its diagnosis), 130 for a run stopped by Ctrl-C
+/// (fem::Interrupted, core/progress.hpp: partial results written) and 4 for anything else.
 int run_program(const char* program_name, const std::function<int()>& body);
 
 }  // namespace fem

@@ -126,7 +126,8 @@ double characteristic_length(ElementShape shape, std::span<const Vec3> nodes) {
         case ElementShape::Quad8: return quad_shell_length(first_nodes<4>(nodes));
         case ElementShape::Tet4:
         case ElementShape::Tet10: return tetrahedron_length(first_nodes<4>(nodes));
-        case ElementShape::Hex8: return hexahedron_length(first_nodes<8>(nodes));
+        case ElementShape::Hex8:
+        case ElementShape::Hex20: return hexahedron_length(first_nodes<8>(nodes));  // the corners
     }
     return 0.0;
 }
@@ -150,7 +151,8 @@ double wave_speed(ElementShape shape, const ElasticMaterial& m) {
         case ElementShape::Quad8: return plate_wave_speed(m);
         case ElementShape::Tet4:
         case ElementShape::Tet10:
-        case ElementShape::Hex8: return dilatational_wave_speed(m);
+        case ElementShape::Hex8:
+        case ElementShape::Hex20: return dilatational_wave_speed(m);
     }
     return 0.0;
 }
@@ -163,7 +165,8 @@ double critical_time_step(ElementShape shape, std::span<const Vec3> nodes, const
     switch (shape) {
         case ElementShape::Tet4:
         case ElementShape::Tet10:
-        case ElementShape::Hex8: return solid_time_step(length, c, volumetric_strain_rate, q);
+        case ElementShape::Hex8:
+        case ElementShape::Hex20: return solid_time_step(length, c, volumetric_strain_rate, q);
         default: return time_step(length, c);
     }
 }

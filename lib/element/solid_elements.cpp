@@ -111,6 +111,13 @@ Eigen::MatrixXd expand3(const Eigen::MatrixXd& m) {
 
 const double kGauss2 = 1.0 / std::sqrt(3.0);
 
+// HRZ lumping (Hinton, Rock & Zienkiewicz 1976): keep the diagonal of a consistent scalar mass,
+// scaled to the element mass (positive where quadratic elements' row sums are not).
+Eigen::MatrixXd hrz_lumped(const Eigen::MatrixXd& m) {
+    const Eigen::VectorXd d = m.diagonal() * (m.sum() / m.diagonal().sum());
+    return d.asDiagonal();
+}
+
 // 4-point tet rule (degree 2): points at (a, b, b) permutations, a = (5 + 3 sqrt 5) / 20,
 // b = (5 - sqrt 5) / 20, weight 1/24 each (reference volume 1/6).
 struct TetPoint { double r, s, t, w; };
@@ -224,12 +231,114 @@ Eigen::MatrixXd tet10_mass(std::span<const Vec3> x, double density, MassKind kin
         const double det = physical_derivatives<10>(X, e.dn, g, "tet10 element");
         m.noalias() += (density * det * p.w) * e.n * e.n.transpose();
     }
-    if (kind == MassKind::Lumped) {
-        // HRZ (Hinton, Rock & Zienkiewicz 1976): keep the diagonal, scale it to the element mass.
-        const double total = m.sum();
-        const Eigen::VectorXd d = m.diagonal() * (total / m.diagonal().sum());
-        m = d.asDiagonal();
+    if (kind == MassKind::Lumped) m = hrz_lumped(m);
+    return expand3(m);
+}
+
+namespace {
+
+// Hex20 natural node coordinates: the corners, then the mid-edge nodes (ElementShape::Hex20 order).
+constexpr std::array<std::array<double, 3>, 20> kHex20Node = {{
+    {-1, -1, -1}, {1, -1, -1}, {1, 1, -1}, {-1, 1, -1}, {-1, -1, 1}, {1, -1, 1}, {1, 1, 1}, {-1, 1, 1},
+    {0, -1, -1},  {1, 0, -1},  {0, 1, -1}, {-1, 0, -1}, {0, -1, 1},  {1, 0, 1},  {0, 1, 1}, {-1, 0, 1},
+    {-1, -1, 0},  {1, -1, 0},  {1, 1, 0},  {-1, 1, 0}}};
+
+// Serendipity shape functions: corners (1 + r ra)(1 + s sa)(1 + t ta)(r ra + s sa + t ta - 2) / 8;
+// a mid-edge node with ra = 0: (1 - r^2)(1 + s sa)(1 + t ta) / 4 (likewise for sa = 0, ta = 0).
+ShapeEval<20> hex20_shape(double r, double s, double t) {
+    ShapeEval<20> e;
+    const double q[3] = {r, s, t};
+    for (int a = 0; a < 20; ++a) {
+        const auto& c = kHex20Node[a];
+        double f[3], df[3];  // the three linear factors (1 + q c) and their derivatives
+        for (int d = 0; d < 3; ++d) f[d] = 1 + q[d] * c[d], df[d] = c[d];
+        if (a < 8) {
+            const double sum = r * c[0] + s * c[1] + t * c[2] - 2;
+            e.n(a) = f[0] * f[1] * f[2] * sum / 8;
+            for (int d = 0; d < 3; ++d) {
+                const double others = f[(d + 1) % 3] * f[(d + 2) % 3];
+                e.dn(d, a) = c[d] * others * (sum + f[d]) / 8;
+            }
+        } else {
+            int z = 0;  // the direction along the edge (coordinate 0)
+            while (c[z] != 0) ++z;
+            f[z] = 1 - q[z] * q[z], df[z] = -2 * q[z];
+            e.n(a) = f[0] * f[1] * f[2] / 4;
+            for (int d = 0; d < 3; ++d) e.dn(d, a) = df[d] * f[(d + 1) % 3] * f[(d + 2) % 3] / 4;
+        }
     }
+    return e;
+}
+
+// Gauss-Legendre points and weights on [-1, 1]: 2 (reduced) or 3 (full) per direction.
+struct Gauss1D { std::vector<double> x, w; };
+Gauss1D gauss_1d(bool reduced) {
+    if (reduced) return {{-kGauss2, kGauss2}, {1, 1}};
+    const double g = std::sqrt(0.6);
+    return {{-g, 0, g}, {5.0 / 9, 8.0 / 9, 5.0 / 9}};
+}
+
+// Calls f(shape functions, physical derivatives, det J x weight) at each point of the product rule.
+template <class F>
+void for_each_hex20_point(const Eigen::Matrix<double, 3, 20>& X, bool reduced, F f) {
+    const Gauss1D g = gauss_1d(reduced);
+    for (std::size_t i = 0; i < g.x.size(); ++i)
+        for (std::size_t j = 0; j < g.x.size(); ++j)
+            for (std::size_t k = 0; k < g.x.size(); ++k) {
+                const ShapeEval<20> e = hex20_shape(g.x[i], g.x[j], g.x[k]);
+                Eigen::Matrix<double, 3, 20> gr;
+                const double det = physical_derivatives<20>(X, e.dn, gr, "hex20 element");
+                f(e, gr, det * g.w[i] * g.w[j] * g.w[k]);
+            }
+}
+
+}  // namespace
+
+Eigen::MatrixXd hex20_stiffness(std::span<const Vec3> x, const ElasticMaterial& m, bool reduced) {
+    const Mat6 D = elasticity_matrix(m);
+    Eigen::Matrix<double, 60, 60> K = Eigen::Matrix<double, 60, 60>::Zero();
+    for_each_hex20_point(coordinates<20>(x, "hex20 element"), reduced,
+                         [&](const ShapeEval<20>&, const Eigen::Matrix<double, 3, 20>& gr, double dv) {
+                             const Eigen::Matrix<double, 6, 60> B = strain_matrix<20>(gr);
+                             K.noalias() += B.transpose() * (D * B) * dv;
+                         });
+    return Eigen::MatrixXd(0.5 * (K + K.transpose()));
+}
+
+Eigen::MatrixXd hex20_mass(std::span<const Vec3> x, double density, MassKind kind, bool reduced) {
+    Eigen::MatrixXd m = Eigen::MatrixXd::Zero(20, 20);
+    for_each_hex20_point(coordinates<20>(x, "hex20 element"), reduced,
+                         [&](const ShapeEval<20>& e, const Eigen::Matrix<double, 3, 20>&, double dv) {
+                             m.noalias() += (density * dv) * e.n * e.n.transpose();
+                         });
+    if (kind == MassKind::Lumped) m = hrz_lumped(m);  // corner row sums are negative, as for tet10
+    return expand3(m);
+}
+
+Eigen::MatrixXd tet4_stiffness(std::span<const Vec3> x, const ElasticMaterial& m) {
+    const auto X = coordinates<4>(x, "tet4 element");
+    // Linear shape functions L0 = 1 - r - s - t, L1 = r, L2 = s, L3 = t: constant gradients.
+    Eigen::Matrix<double, 3, 4> dn;
+    dn << -1, 1, 0, 0, -1, 0, 1, 0, -1, 0, 0, 1;
+    Eigen::Matrix<double, 3, 4> g;
+    const double det = physical_derivatives<4>(X, dn, g, "tet4 element");
+    const Eigen::Matrix<double, 6, 12> B = strain_matrix<4>(g);
+    const Eigen::Matrix<double, 12, 12> K = B.transpose() * elasticity_matrix(m) * B * (det / 6);
+    return Eigen::MatrixXd(0.5 * (K + K.transpose()));
+}
+
+Eigen::MatrixXd tet4_mass(std::span<const Vec3> x, double density, MassKind kind, Tet4MassRule rule) {
+    const auto X = coordinates<4>(x, "tet4 element");
+    const Mat3 J = (X.rightCols<3>().colwise() - X.col(0)).transpose();
+    const double volume = J.determinant() / 6;
+    if (!(volume > 0.0))
+        throw InputError("tet4 element has a non-positive volume (" + std::to_string(volume) + "): it is inverted or flat");
+    const double mass = density * volume;
+    // int N_a N_b dV = V (1 + delta_ab) / 20 for linear shape functions.
+    Eigen::MatrixXd m;
+    if (kind == MassKind::Lumped) m = Eigen::MatrixXd::Identity(4, 4) * (mass / 4);
+    else if (rule == Tet4MassRule::Centroid) m = Eigen::MatrixXd::Ones(4, 4) * (mass / 16);  // N_a = 1/4 at the centroid
+    else m = (Eigen::MatrixXd::Ones(4, 4) + Eigen::MatrixXd::Identity(4, 4)) * (mass / 20);
     return expand3(m);
 }
 

@@ -1,7 +1,7 @@
 #pragma once
 // Linear solid elements for implicit (modal) analysis: the element stiffness K = int B^T D B dV and
-// mass M = int rho N^T N dV (thesis Eq 2-36/2-38 need both) of the 8-node hexahedron and the 10-node
-// tetrahedron. Three displacement DOFs per node, ordered ux, uy, uz node after node, so the matrices
+// mass M = int rho N^T N dV (thesis Eq 2-36/2-38 need both) of the 8-node hexahedron and the 4- and
+// 10-node tetrahedra. Three displacement DOFs per node, ordered ux, uy, uz node after node, so the matrices
 // are 3n x 3n with n = 8 or 10. Node orders are the library's (mesh/element_shape.hpp): hex8 bottom
 // face 0-3 counter-clockwise then the top face; tet10 corners 0-3 then the mid-edge nodes of edges
 // 01, 12, 02, 03, 23, 13 (Gmsh order; CalculiX C3D10 and VTK swap the last two).
@@ -48,6 +48,30 @@ enum class Tet10MassRule {
 /// tet each corner node gets 1/36 and each mid-edge node 4/27 of the element mass).
 Eigen::MatrixXd tet10_mass(std::span<const Vec3> x, double density, MassKind kind = MassKind::Consistent,
                            Tet10MassRule rule = Tet10MassRule::Exact);
+
+/// Tet4 (constant-strain tetrahedron, CalculiX C3D4) stiffness (12 x 12), exact with one point.
+/// Throws InputError for a non-positive volume.
+Eigen::MatrixXd tet4_stiffness(std::span<const Vec3> x, const ElasticMaterial& m);
+/// Quadrature rule for the tet4 consistent mass (N^T N is of degree 2).
+enum class Tet4MassRule {
+    Exact,     // rho V / 20 (1 + delta_ab)
+    Centroid,  // the stiffness's one point, as CalculiX integrates C3D4 (e_c3d.f: the mass uses the
+               // element's integration points): rho V / 16 in every entry, rank one per element
+};
+/// Tet4 mass (12 x 12): consistent (rule above), or lumped rho V / 4 per node.
+Eigen::MatrixXd tet4_mass(std::span<const Vec3> x, double density, MassKind kind = MassKind::Consistent,
+                          Tet4MassRule rule = Tet4MassRule::Exact);
+
+/// Hex20 (20-node serendipity brick, CalculiX C3D20 / C3D20R; node order of ElementShape::Hex20)
+/// stiffness (60 x 60): 3x3x3 Gauss (full), or 2x2x2 (reduced: the C3D20R rule, exact for a
+/// parallelepiped's constant-strain states; it leaves one spurious zero-energy mode per element that
+/// neighbours usually suppress). Throws InputError for a non-positive Jacobian.
+Eigen::MatrixXd hex20_stiffness(std::span<const Vec3> x, const ElasticMaterial& m, bool reduced = false);
+/// Hex20 mass (60 x 60): consistent with the stiffness rule (3x3x3 exact for parallelepipeds; 2x2x2
+/// with reduced, as CalculiX integrates C3D20R's mass), or HRZ-lumped (the corner row sums are
+/// negative, as for tet10).
+Eigen::MatrixXd hex20_mass(std::span<const Vec3> x, double density, MassKind kind = MassKind::Consistent,
+                           bool reduced = false);
 
 /// Volumes by the element's own mapping (for mass checks).
 double hex8_volume(std::span<const Vec3> x);

@@ -163,6 +163,9 @@ public:
     virtual double search_seconds() const { return 0.0; }
     /// Penetration and energy statistics for the run summary (contact interfaces).
     virtual ContactReport contact_report() const { return {}; }
+    /// Nodal fields for the VTU output (name, one value per mesh node), e.g. contact pressure;
+    /// fields of the same name from several providers are added.
+    virtual std::vector<std::pair<std::string, std::vector<double>>> point_fields(const NodalState& s) const { return {}; }
     /// Restart: everything a later add_forces depends on (contact: friction springs and the segment
     /// each node sticks to, candidate lists and rebuild counters, energies), under the HDF5 group
     /// `prefix`; restore_state reads it into a provider built the same way and initialized, and

@@ -17,6 +17,7 @@
 #include <Spectra/SymEigsSolver.h>
 
 #include "core/error.hpp"
+#include "core/progress.hpp"
 #include "element/critical_time_step.hpp"
 #include "explicit/parallel.hpp"
 #include "io/hdf5.hpp"
@@ -831,6 +832,15 @@ void ExplicitSolver::write_vtu(double t) {
             v.values.push_back(s_.v[i][d]);
         }
     data.point_fields = {std::move(u), std::move(v)};
+    // The force providers' nodal fields (contact pressure), summed over providers by name.
+    std::map<std::string, std::vector<double>> nodal;
+    for (const auto& p : model_.force_providers())
+        for (auto& [name, values] : p->point_fields(s_)) {
+            auto& sum = nodal[name];
+            if (sum.empty()) sum.assign(s_.node_count(), 0.0);
+            for (int i = 0; i < s_.node_count(); ++i) sum[i] += values[i];
+        }
+    for (auto& [name, values] : nodal) data.point_fields.push_back({name, 1, std::move(values)});
     // One stress per element, in block order (blocks without a group: zero).
     const Mesh& mesh = model_.mesh();
     std::vector<std::vector<double>> per_block(mesh.blocks.size());
@@ -1215,8 +1225,9 @@ double ExplicitSolver::choose_dt() const {
 RunSummary ExplicitSolver::run() {
     using Clock = std::chrono::steady_clock;
     const auto wall0 = Clock::now();
-    const bool progress = opt_.progress && isatty(STDERR_FILENO);
-    auto last_progress = wall0;
+    // Progress on stderr (core/progress.hpp) and Ctrl-C as a clean stop after the current cycle.
+    Progress progress(opt_.name, opt_.end_time, opt_.progress ? Progress::Mode::Auto : Progress::Mode::Quiet);
+    const InterruptGuard interrupt_guard;
     const int n = s_.node_count(), nr = s_.rotational_count();
     const long cycles0 = element_cycles_, step0 = step_;
 
@@ -1287,7 +1298,7 @@ RunSummary ExplicitSolver::run() {
     std::vector<Partial> partial(chunks);
     const double tiny = 1e-12 * opt_.end_time;
 
-    while (t_ < opt_.end_time - tiny && !stop_requested_) {
+    while (t_ < opt_.end_time - tiny && !stop_requested_ && !interrupt_requested()) {
         // No shortened last step: a change of step changes the discrete energy that central
         // differences conserve; the run ends at the first step at or after end_time (as LS-DYNA).
         const double dtavg = step_ == 0 ? 0.5 * dt_half_ : 0.5 * (dt_prev_ + dt_half_);
@@ -1494,17 +1505,18 @@ RunSummary ExplicitSolver::run() {
         notify_observer(false);
         restart_dumps();
         lap(T.output);
-        if (progress) {
-            const auto now = std::chrono::steady_clock::now();
-            if (std::chrono::duration<double>(now - last_progress).count() > 0.5) {
-                last_progress = now;
-                std::fprintf(stderr, "\r%s: t = %.4g / %.4g s, step %ld, dt %.3g s, KE %.3g J, IE %.3g J   ",
-                             opt_.name.c_str(), t_, opt_.end_time, step_, dt_half_, E.kinetic, E.internal);
-                std::fflush(stderr);
-            }
+        if (progress.due(t_)) {
+            const double wall = std::chrono::duration<double>(Clock::now() - wall0).count();
+            progress.show(t_, fmt::format("t = {:.4g} of {:.4g} s, step {}, {:.3g} element-cycles/s", t_, opt_.end_time, step_,
+                                          wall > 0 ? static_cast<double>(element_cycles_ - cycles0) / wall : 0.0));
         }
     }
-    if (progress) std::fprintf(stderr, "\n");
+    progress.finish();
+    // Ctrl-C: the outputs below are written for the state reached, marked partial, then Interrupted.
+    const bool interrupted = interrupt_requested() && t_ < opt_.end_time - tiny;
+    const std::string partial_note =
+        interrupted ? fmt::format("partial: interrupted (Ctrl-C) at t = {:.6g} s of {:.6g} s, step {}", t_, opt_.end_time, step_)
+                    : "";
     if (pvd_ && next_vtu_ > t_) {  // the last state, unless just written
         next_vtu_ = t_;
         write_vtu(t_);
@@ -1576,10 +1588,16 @@ RunSummary ExplicitSolver::run() {
         nlohmann::json summary = summary_.to_json();
         RunSummary::erase_machine_facts(summary);
         w.attribute("/", "summary", summary.dump());
+        if (interrupted) w.attribute("/", "partial", partial_note);
         w.commit();
     }
     finish_timing();  // with the HDF5 file
-    if (opt_.print_summary) std::cout << summary_.text() << std::flush;
+    if (opt_.print_summary) std::cout << summary_.text() << (interrupted ? partial_note + "\n" : "") << std::flush;
+    if (interrupted) {  // the flag stays set: other runs going on at once stop as well
+        throw Interrupted(fmt::format("explicit run '{}': {}{}{}", opt_.name, partial_note,
+                                      opt_.h5_path.empty() ? "" : "; histories in " + opt_.h5_path.string(),
+                                      opt_.pvd_path.empty() ? "" : "; states in " + opt_.pvd_path.string()));
+    }
     return summary_;
 }
 

@@ -21,6 +21,7 @@ int vtk_cell_type(ElementShape s) {
         case ElementShape::Tet4: return 10;    // VTK_TETRA
         case ElementShape::Tet10: return 24;   // VTK_QUADRATIC_TETRA
         case ElementShape::Hex8: return 12;    // VTK_HEXAHEDRON
+        case ElementShape::Hex20: return 25;   // VTK_QUADRATIC_HEXAHEDRON (same node order as ours)
     }
     return 0;
 }

@@ -18,6 +18,8 @@ enum class ElementShape {
     Tet4,    // 4-node tetrahedron
     Tet10,   // 10-node tetrahedron
     Hex8,    // 8-node hexahedron
+    Hex20,   // 20-node serendipity hexahedron (CalculiX/Abaqus C3D20 order, which is VTK's too: the 8
+             // corners as hex8, then mid-edge nodes of edges 01 12 23 30, 45 56 67 74, 04 15 26 37)
 };
 
 std::string_view to_string(ElementShape shape);

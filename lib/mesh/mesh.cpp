@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <set>
 #include <utility>
 #include <sstream>
 
@@ -75,7 +76,8 @@ double centre_jacobian(ElementShape shape, const std::vector<Vec3>& x) {
     switch (shape) {
         case ElementShape::Tet4:
         case ElementShape::Tet10: return (x[1] - x[0]).dot((x[2] - x[0]).cross(x[3] - x[0]));
-        case ElementShape::Hex8: {
+        case ElementShape::Hex8:
+        case ElementShape::Hex20: {  // the corners
             const Vec3 a = (x[1] + x[2] + x[5] + x[6]) - (x[0] + x[3] + x[4] + x[7]);
             const Vec3 b = (x[2] + x[3] + x[6] + x[7]) - (x[0] + x[1] + x[4] + x[5]);
             const Vec3 c = (x[4] + x[5] + x[6] + x[7]) - (x[0] + x[1] + x[2] + x[3]);
@@ -155,6 +157,39 @@ Mesh box_hex8(double lx, double ly, double lz, int nx, int ny, int nz, std::stri
                 if (k == 0) m.node_sets["z0"].push_back(n);
                 if (k == nz) m.node_sets["z1"].push_back(n);
             }
+    return m;
+}
+
+Mesh box_hex20(double lx, double ly, double lz, int nx, int ny, int nz, std::string part) {
+    const Mesh hex = box_hex8(lx, ly, lz, nx, ny, nz, part);
+    Mesh m;
+    m.nodes = hex.nodes;
+    m.node_sets = hex.node_sets;
+    std::map<std::pair<int, int>, int> mid;  // edge (sorted corner pair) -> mid-edge node
+    static constexpr int kEdges[12][2] = {{0, 1}, {1, 2}, {2, 3}, {3, 0}, {4, 5}, {5, 6},
+                                          {6, 7}, {7, 4}, {0, 4}, {1, 5}, {2, 6}, {3, 7}};
+    ElementBlock b{std::move(part), ElementShape::Hex20, {}};
+    for (int e = 0; e < hex.blocks[0].size(); ++e) {
+        const auto c = hex.blocks[0].element(e);
+        int nodes[20];
+        for (int k = 0; k < 8; ++k) nodes[k] = c[k];
+        for (int k = 0; k < 12; ++k) {
+            const int a = c[kEdges[k][0]], z = c[kEdges[k][1]];
+            const auto key = std::minmax(a, z);
+            auto it = mid.find(key);
+            if (it == mid.end()) it = mid.emplace(key, m.add_node(0.5 * (hex.nodes[a] + hex.nodes[z]))).first;
+            nodes[8 + k] = it->second;
+        }
+        b.add(nodes);
+    }
+    m.blocks.push_back(std::move(b));
+    // A mid-edge node lies on a face when both ends of its edge do.
+    for (auto& [name, ids] : m.node_sets) {
+        const std::set<int> on(ids.begin(), ids.end());
+        for (const auto& [edge, node] : mid)
+            if (on.count(edge.first) && on.count(edge.second)) ids.push_back(node);
+        std::sort(ids.begin(), ids.end());
+    }
     return m;
 }
 

@@ -70,6 +70,10 @@ void validate(const Mesh& mesh);
 /// "y0", "y1", "z0", "z1" (the six faces).
 Mesh box_hex8(double lx, double ly, double lz, int nx, int ny, int nz, std::string part = "box");
 
+/// The box of box_hex8 with 20-node hexahedra (mid-edge nodes shared between neighbours, order of
+/// ElementShape::Hex20). Node sets as box_hex8, mid-edge nodes on the faces included.
+Mesh box_hex20(double lx, double ly, double lz, int nx, int ny, int nz, std::string part = "box");
+
 /// The box of box_hex8 with every hexahedron split into six tetrahedra around its main diagonal
 /// (a conforming split of the structured grid), `shape` Tet4 or Tet10 (mid-edge nodes shared between
 /// neighbours, Gmsh order: corners, then edges 01, 12, 02, 03, 23, 13). Node sets as box_hex8 ("x0",

@@ -1,6 +1,7 @@
 #include "modal/case.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <map>
 #include <set>
 #include <sstream>
@@ -13,6 +14,8 @@
 #include "io/run_folder.hpp"
 #include "mesh/gmsh.hpp"
 #include "mesh/mesh.hpp"
+#include "modal/deck_run.hpp"
+#include "input/numbers.hpp"
 
 namespace fem::modal {
 namespace {
@@ -70,7 +73,8 @@ namespace {
 
 ModalCase from_document(const input::TomlDocument& doc, const std::string& stem) {
     const input::TomlTable root = doc.root();
-    root.allow({"mesh", "output", "modes", "shift_hz", "mass", "materials", "parts", "supports", "couplings"});
+    root.allow({"mesh", "output", "modes", "shift_hz", "mass", "tet_mass_rule", "shapes", "materials", "parts", "supports",
+                "couplings"});
     ModalCase c;
     c.mesh = root.path("mesh");
     c.output = root.has("output") ? root.path("output") : doc.base() / (stem + "_modes");
@@ -78,6 +82,9 @@ ModalCase from_document(const input::TomlDocument& doc, const std::string& stem)
     c.options.shift_hz = root.real_or("shift_hz", 0.0);
     c.mass = root.choice_or("mass", {"consistent", "lumped"}, "consistent") == "lumped" ? solid::MassKind::Lumped
                                                                                        : solid::MassKind::Consistent;
+    c.tet_mass_rule_as_ccx = root.choice_or("tet_mass_rule", {"exact", "ccx"}, "exact") == "ccx";
+    c.shapes = root.has("shapes") ? root.integer<int>("shapes", {.min = 0}) : -1;
+    if (c.shapes > c.options.modes) root.fail("shapes", fmt::format("must be <= modes ({}), got {}", c.options.modes, c.shapes));
 
     std::map<std::string, ElasticMaterial> materials;
     if (const auto mats = root.optional_table("materials"))
@@ -90,7 +97,7 @@ ModalCase from_document(const input::TomlDocument& doc, const std::string& stem)
     const auto parts = root.tables("parts");
     if (parts.empty()) root.fail("no [[parts]]: give each part of the mesh a material");
     for (const input::TomlTable& t : parts) {
-        t.allow({"name", "material", "thickness"});
+        t.allow({"name", "material", "thickness", "element"});
         CasePart p;
         p.name = t.string("name");
         const std::string mat = t.string("material");
@@ -102,6 +109,11 @@ ModalCase from_document(const input::TomlDocument& doc, const std::string& stem)
         }
         p.material = it->second;
         p.thickness = t.real_or("thickness", 0.0, input::Range::positive());
+        if (t.has("element")) {
+            p.element = t.choice("element", {"C3D8I", "C3D8", "C3D20", "C3D20R", "C3D10", "C3D4", "S4"});
+            if ((p.element == "S4") != (p.thickness > 0))
+                t.fail("element", p.element == "S4" ? "S4 shells need a thickness" : "a part with a thickness is a shell (S4)");
+        }
         c.parts.push_back(p);
     }
     for (const input::TomlTable& t : root.tables("supports")) {
@@ -135,12 +147,39 @@ ModalCase parse_modal_case(std::string_view text, const std::string& source, con
     return from_document(input::TomlDocument::parse(text, source, base), std::filesystem::path(source).stem().string());
 }
 
-std::string run_modal_case(const ModalCase& c) {
-    // The output folder is checked (writable, not in use by another run) before anything is solved;
-    // the results replace the previous run's set only when they are all written.
-    io::RunFolder out(c.output, "fem-modal");
-    const Mesh mesh = read_gmsh(c.mesh);
-    Model model(mesh);
+namespace {
+
+// The deck element type of every block of part p (its `element` key or the default of the shape).
+std::string element_type(const CasePart& p, const ElementBlock& block) {
+    const std::vector<std::string> types = element_types_for(block.shape);
+    if (p.thickness > 0 && block.shape != ElementShape::Quad4)
+        throw InputError("part '" + p.name + "' has a thickness (a shell part) but " + std::string(to_string(block.shape)) +
+                         " elements; shells are quad4 (MITC4)");
+    if (types.empty())
+        throw InputError("part '" + p.name + "': no element formulation for " + std::string(to_string(block.shape)) +
+                         " elements in a modal model (hex8, tet4, tet10 solids and quad4 shells)");
+    if (block.shape == ElementShape::Quad4 && !(p.thickness > 0))
+        throw InputError("part '" + p.name + "' has quad4 elements: give it a thickness (a shell part)");
+    if (p.element.empty()) return types.front();
+    if (std::find(types.begin(), types.end(), p.element) == types.end())
+        throw InputError("part '" + p.name + "': element = \"" + p.element + "\" does not fit its " +
+                         std::string(to_string(block.shape)) + " elements (" + input::one_of(types) + ")");
+    return p.element;
+}
+
+}  // namespace
+
+SolidOptions solid_options(const ModalCase& c) {
+    SolidOptions o;
+    o.mass = c.mass;
+    if (c.tet_mass_rule_as_ccx) {
+        o.tet10_mass_rule = solid::Tet10MassRule::FourPoint;
+        o.tet4_mass_rule = solid::Tet4MassRule::Centroid;
+    }
+    return o;
+}
+
+void build_case_model(const ModalCase& c, const Mesh& mesh, Model& model) {
     std::set<int> covered;
     for (const CasePart& p : c.parts) {
         std::vector<int> blocks;
@@ -149,8 +188,11 @@ std::string run_modal_case(const ModalCase& c) {
         } catch (const InputError& e) {
             throw InputError("case part '" + p.name + "' is not a physical group with elements in " + c.mesh.string() + ": " + e.what());
         }
-        if (p.thickness > 0) model.add_shell_part(p.name, p.thickness, p.material, c.mass);
-        else model.add_solid_part(p.name, p.material, {.mass = c.mass});
+        for (int b : blocks) {
+            const std::string type = element_type(p, mesh.blocks[b]);
+            model.add_block(b, dofs_per_node(type),
+                            element_kernel(type, p.material, p.thickness, solid_options(c)));
+        }
         covered.insert(blocks.begin(), blocks.end());
     }
     for (int b = 0; b < static_cast<int>(mesh.blocks.size()); ++b)
@@ -162,6 +204,15 @@ std::string run_modal_case(const ModalCase& c) {
         if (cp.sets.size() == 2) model.couple_coincident(mesh.node_set(cp.sets[0]), mesh.node_set(cp.sets[1]), cp.dofs);
         else model.couple(mesh.node_set(cp.sets[0]), cp.dofs);
     }
+}
+
+std::string run_modal_case(const ModalCase& c) {
+    // The output folder is checked (writable, not in use by another run) before anything is solved;
+    // the results replace the previous run's set only when they are all written.
+    io::RunFolder out(c.output, "fem-modal");
+    const Mesh mesh = read_gmsh(c.mesh);
+    Model model(mesh);
+    build_case_model(c, mesh, model);
     const AssembledSystem sys = model.assemble();
     // A solve that fails for numerical reasons names the parts and materials at the extremes of the
     // stiffness and mass diagonals (the inputs that make the problem ill-conditioned).
@@ -175,9 +226,78 @@ std::string run_modal_case(const ModalCase& c) {
         if (cond.representable()) throw;
         throw InputError(e.what() + extremes(cond, sys, mesh, c));
     }
-    write_results(out.staging(), mesh, sys, r);
+    if (c.shapes > c.options.modes)
+        throw InputError(fmt::format("shapes = {} asks for more mode shapes than the {} modes computed", c.shapes, c.options.modes));
+    write_results(out.staging(), mesh, sys, r, c.shapes);
     out.commit();
-    return summary(sys, r) + "  results: " + c.output.string() + "/{frequencies.csv, modes.h5, modes.pvd}\n";
+    return summary(sys, r) + "  results: " + c.output.string() + "/{frequencies.csv, modes.h5" +
+           (c.shapes == 0 ? "" : ", modes.pvd") + "}\n";
+}
+
+std::string export_case_deck(const ModalCase& c, const std::filesystem::path& path) {
+    const Mesh mesh = read_gmsh(c.mesh);
+    Model model(mesh);
+    build_case_model(c, mesh, model);  // refuses what the run would refuse
+    deck::Deck d;
+    d.mesh = mesh;
+    d.mesh.node_sets.clear();
+    std::string notes;
+    // One *ELEMENT block and section per mesh block (element set = the part name).
+    std::set<std::string> used_materials;
+    for (const CasePart& p : c.parts)
+        for (int b : mesh.blocks_of_part(p.name)) {
+            const std::string type = element_type(p, mesh.blocks[b]);
+            d.block_types.push_back(type);
+            d.element_ids.emplace_back();
+            d.block_section.push_back(static_cast<int>(d.sections.size()));
+            d.mesh.blocks[b].part = p.name;
+            std::string elset = fmt::format("{}_{}", p.name, b);  // a deck name: letters, digits, '_'
+            for (char& ch : elset)
+                if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
+            d.sections.push_back({p.thickness > 0 ? deck::Section::Shell : deck::Section::Solid, elset,
+                                  p.material.name, p.thickness});
+            d.materials.emplace(p.material.name, p.material);
+            if ((type == "C3D10" || type == "C3D4") && !c.tet_mass_rule_as_ccx && c.mass == solid::MassKind::Consistent)
+                notes += "note: part '" + p.name + "': ccx integrates the " + type + " mass with the stiffness rule, this case "
+                         "with the exact rule (tet_mass_rule = \"ccx\" matches ccx; the frequencies differ by up to 1e-3 for "
+                         "C3D10 and by percents for C3D4 on coarse meshes)\n";
+            if (type == "S4")
+                notes += "note: part '" + p.name + "': ccx expands S4 shells into C3D8I bricks, this case uses MITC4 shells "
+                         "(different formulations; the frequencies differ by up to about 1 % on converged meshes)\n";
+            if (c.mass == solid::MassKind::Lumped)
+                notes += "note: ccx uses the consistent mass; this case asks for the lumped mass\n";
+        }
+    // Blocks in part order: rebuild the mesh's block list to follow the sections.
+    std::vector<ElementBlock> blocks;
+    for (const CasePart& p : c.parts)
+        for (int b : mesh.blocks_of_part(p.name)) blocks.push_back(mesh.blocks[b]);
+    d.mesh.blocks = blocks;
+    // DOFs each node carries (6 where a shell touches it): a support of "all" fixes only those.
+    std::vector<DofMask> carried(mesh.node_count(), 0);
+    for (std::size_t b = 0; b < d.mesh.blocks.size(); ++b)
+        for (int n : d.mesh.blocks[b].connectivity) carried[n] |= dofs_per_node(d.block_types[b]) == 6 ? kAllDofs : kTranslations;
+    for (auto [node, mask] : model.constraints().fixes()) {
+        mask &= carried[node];
+        // Contiguous runs of components -> first, last DOF lines.
+        for (int a = 0; a < 6; ++a) {
+            if (!(mask & (1u << a))) continue;
+            int e = a;
+            while (e + 1 < 6 && (mask & (1u << (e + 1)))) ++e;
+            d.boundaries.push_back({node, a + 1, e + 1});
+            a = e;
+        }
+    }
+    // A coupled set of nodes n0, n1, ... -> u_ni = u_n0 for every component (ni the dependent DOF,
+    // as ccx wants each dependent DOF in one equation only).
+    for (const auto& [nodes, mask] : model.constraints().couplings())
+        for (int comp = 0; comp < 6; ++comp)
+            if (mask & (1u << comp))
+                for (std::size_t i = 1; i < nodes.size(); ++i) d.equations.push_back({nodes[i], nodes[0], comp + 1});
+    d.frequency = deck::Frequency{c.options.modes};
+    deck::write_deck(path, d, "fem-modal export of " + c.mesh.filename().string());
+    if (c.options.shift_hz != 0.0)
+        notes += fmt::format("note: the case's shift_hz = {:g} is not written (ccx finds the lowest modes itself)\n", c.options.shift_hz);
+    return "wrote " + path.string() + "\n" + notes;
 }
 
 }  // namespace fem::modal

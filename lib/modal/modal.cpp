@@ -191,6 +191,8 @@ ModalResult solve_modes(const SpMat& K, const SpMat& M, const ModalOptions& o) {
         throw InputError(fmt::format("modal: the eigenvalues overflow double precision: {} (is a density far too small "
                                      "or a Young's modulus far too large for SI units?)", cond.describe()));
 
+    if (o.shift_hz == 0.0 && o.admit_rigid_body_modes) r.shift = -1e-8 * cond.lambda_max;
+
     auto t0 = Clock::now();
     ShiftInvert op(K, M, o.use_cholmod);
     MassProduct bop(M);
@@ -318,8 +320,10 @@ std::vector<ModePair> pair_modes(const Eigen::MatrixXd& m, double min_mac) {
     return pairs;
 }
 
-void write_results(const std::filesystem::path& dir, const Mesh& mesh, const AssembledSystem& system, const ModalResult& r) {
+void write_results(const std::filesystem::path& dir, const Mesh& mesh, const AssembledSystem& system, const ModalResult& r,
+                   int shapes) {
     const int nm = static_cast<int>(r.eigenvalues.size());
+    const int written = shapes < 0 ? nm : std::min(shapes, nm);
     std::vector<double> mode(nm), f(r.frequencies_hz.data(), r.frequencies_hz.data() + nm),
         lam(r.eigenvalues.data(), r.eigenvalues.data() + nm), res(r.residuals.data(), r.residuals.data() + nm);
     for (int k = 0; k < nm; ++k) mode[k] = k + 1;
@@ -336,15 +340,17 @@ void write_results(const std::filesystem::path& dir, const Mesh& mesh, const Ass
     h5.write("nodes", xyz);
     h5.attribute("/", "shift_rad2_per_s2", r.shift);
     h5.attribute("/", "normalization", "mass (phi^T M phi = 1)");
-    io::PvdSeries pvd(dir / "modes.pvd");
-    for (int k = 0; k < nm; ++k) {
+    h5.attribute("/", "shapes_written", static_cast<double>(written));
+    std::optional<io::PvdSeries> pvd;
+    if (written > 0) pvd.emplace(dir / "modes.pvd");
+    for (int k = 0; k < written; ++k) {
         const std::vector<double> u = system.translations(r.shapes.col(k));
         h5.write(fmt::format("mode_{}/translation", k + 1),
                  Eigen::MatrixXd(Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>>(u.data(), mesh.node_count(), 3)));
         h5.attribute(fmt::format("mode_{}", k + 1), "frequency_hz", f[k]);
         io::VtuData data;
         data.point_fields.push_back({"mode_shape", 3, u});
-        pvd.add(k + 1, mesh, data);  // "time" = mode number, so ParaView steps through the modes
+        pvd->add(k + 1, mesh, data);  // "time" = mode number, so ParaView steps through the modes
     }
     h5.commit();
 }

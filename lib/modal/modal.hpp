@@ -8,7 +8,8 @@
 // Rigid-body modes: a free (or partly free) structure has a singular K, so K itself cannot be
 // factorized. Give a negative shift (ModalOptions::shift_hz < 0): K - sigma M is then positive
 // definite and the zero eigenvalues come out as the first modes. Without a shift a singular model is
-// refused with "model has rigid-body modes: add supports or use shift".
+// refused with "model has rigid-body modes: add supports or use shift", unless
+// ModalOptions::admit_rigid_body_modes picks the shift itself (as ccx runs a free model).
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -28,6 +29,11 @@ struct ModalOptions {
     /// Shift as a frequency [Hz], sign kept: sigma = sign(f) (2 pi f)^2. 0 = no shift (the model must
     /// be supported). A negative shift admits rigid-body modes.
     double shift_hz = 0.0;
+    /// With shift_hz == 0: solve a model with rigid-body modes (free or partly supported) as
+    /// CalculiX does, without asking for a shift: a small negative shift sigma = -1e-8 max(K_ii / M_ii)
+    /// (about 1e-8 of the highest eigenvalue) makes K - sigma M positive definite; rigid-body modes
+    /// come out as eigenvalues near 0 and the others unchanged. Used for decks (deck/deck.hpp).
+    bool admit_rigid_body_modes = false;
     /// Lanczos basis size; 0 = max(2 modes + 1, modes + 16), capped by the problem size.
     int basis = 0;
     int max_iterations = 1000;
@@ -90,11 +96,12 @@ struct ModePair {
 };
 std::vector<ModePair> pair_modes(const Eigen::MatrixXd& mac_matrix, double min_mac = 0.0);
 
-/// Writes frequencies.csv (mode, frequency_hz, eigenvalue, residual), modes.h5 (datasets
-/// frequencies_hz, eigenvalues, residuals, nodes (n x 3), mode_<k>/translation (n x 3), k from 1) and
-/// a PVD series modes.pvd with one VTU per mode (point field "mode_shape") into `dir`.
+/// Writes frequencies.csv (mode, frequency_hz, eigenvalue, residual) and modes.h5 (datasets
+/// frequencies_hz, eigenvalues, residuals, nodes (n x 3)) into `dir`, and for the first `shapes`
+/// modes (all when < 0; none when 0: frequencies only) mode_<k>/translation (n x 3, k from 1) in
+/// modes.h5 and a PVD series modes.pvd with one VTU per mode (point field "mode_shape").
 void write_results(const std::filesystem::path& dir, const Mesh& mesh, const AssembledSystem& system,
-                   const ModalResult& result);
+                   const ModalResult& result, int shapes = -1);
 
 /// A one-paragraph run summary (size, factor fill, iterations, times, frequencies, worst residual).
 std::string summary(const AssembledSystem& system, const ModalResult& result);

@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "core/error.hpp"
+#include "core/progress.hpp"
 #include "topopt/multigrid.hpp"
 #include "topopt/sparse_assembly.hpp"
 
@@ -365,6 +366,11 @@ Result optimize(const Model& model, const Settings& s) {
         r.change.push_back(change);
         r.iterations = it;
         if (s.on_iteration) s.on_iteration(it, c, r.volume.back(), change);
+        // Ctrl-C under an InterruptGuard (core/progress.hpp): stop with the design reached.
+        if (interrupt_requested()) {
+            r.interrupted = true;
+            break;
+        }
         if (projected) {
             r.beta.push_back(beta);
             // Continuation: sharpen when the design has settled or the step has lasted long enough.

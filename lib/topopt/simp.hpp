@@ -109,6 +109,7 @@ struct Result {
     std::vector<double> load_case_compliance;  // of the final analysed design, per load case [J]
     int iterations = 0;
     bool converged = false;
+    bool interrupted = false;        // stopped by Ctrl-C (core/progress.hpp) after `iterations`
     double seconds = 0.0;            // wall time of optimize()
     double seconds_setup = 0.0;      // of which: sparsity pattern, symbolic factorization, filter matrix
     Timing timing;                   // of which, per part of an iteration

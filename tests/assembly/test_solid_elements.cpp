@@ -8,6 +8,7 @@
 
 #include "core/error.hpp"
 #include "element/solid_elements.hpp"
+#include "mesh/mesh.hpp"
 
 using namespace fem;
 
@@ -120,4 +121,90 @@ TEST(SolidElements, InvertedElementIsRefused) {
     EXPECT_THROW(solid::hex8_stiffness(x, kSteel), InputError);
     EXPECT_THROW(solid::tet10_stiffness(tet10(Vec3(0, 0, 0), Vec3(0, 1, 0), Vec3(1, 0, 0), Vec3(0, 0, 1)), kSteel), InputError);
     EXPECT_THROW(solid::hex8_mass(std::vector<Vec3>(5), 1.0), InputError);
+}
+
+namespace {
+// A hex20 on the distorted hex's corners with straight edges (mid-edge nodes at the midpoints,
+// ElementShape::Hex20 order), and its volume as the trilinear hex's.
+std::vector<Vec3> distorted_hex20() {
+    auto x = distorted_hex();
+    static constexpr int edges[12][2] = {{0, 1}, {1, 2}, {2, 3}, {3, 0}, {4, 5}, {5, 6},
+                                         {6, 7}, {7, 4}, {0, 4}, {1, 5}, {2, 6}, {3, 7}};
+    for (const auto& e : edges) x.push_back((x[e[0]] + x[e[1]]) / 2);
+    return x;
+}
+}  // namespace
+
+// Hex20: six rigid-body modes with 3x3x3 Gauss; 2x2x2 (C3D20R) leaves six more zero-energy modes on a
+// lone element (60 DOF, rank 8 points x 6 strains = 48). Constant strain energy exact with both rules,
+// mass = rho V with both.
+TEST(SolidElements, Hex20RigidModesConstantStrainAndMass) {
+    const auto x = distorted_hex20();
+    const Eigen::MatrixXd K = solid::hex20_stiffness(x, kSteel), Kr = solid::hex20_stiffness(x, kSteel, true);
+    EXPECT_LT((K - K.transpose()).norm(), 1e-12 * K.norm());
+    EXPECT_EQ(zero_modes(K), 6);
+    EXPECT_EQ(zero_modes(Kr), 12);
+    Mat3 G;
+    G << 1e-3, 2e-4, -1e-4, 3e-4, -5e-4, 2e-4, 0.0, 1e-4, 7e-4;
+    const Mat3 eps = 0.5 * (G + G.transpose());
+    Eigen::Matrix<double, 6, 1> e;
+    e << eps(0, 0), eps(1, 1), eps(2, 2), 2 * eps(0, 1), 2 * eps(1, 2), 2 * eps(2, 0);
+    const double w = e.dot(solid::elasticity_matrix(kSteel) * e), v = solid::hex8_volume(distorted_hex());
+    const Eigen::VectorXd u = linear_field(x, G);
+    EXPECT_NEAR(u.dot(K * u), v * w, 1e-10 * v * w);
+    EXPECT_NEAR(u.dot(Kr * u), v * w, 1e-10 * v * w);
+    Eigen::VectorXd tz = Eigen::VectorXd::Zero(60);
+    for (int a = 0; a < 20; ++a) tz(3 * a + 2) = 1;
+    const double m = kSteel.density * v;
+    for (bool reduced : {false, true})
+        for (auto kind : {solid::MassKind::Consistent, solid::MassKind::Lumped})
+            EXPECT_NEAR(tz.dot(solid::hex20_mass(x, kSteel.density, kind, reduced) * tz), m, 1e-12 * m);
+    const Eigen::VectorXd lumped = solid::hex20_mass(x, kSteel.density, solid::MassKind::Lumped).diagonal();
+    EXPECT_GT(lumped.minCoeff(), 0.0);
+}
+
+// The patch test on a mesh: a 2 x 2 x 2 box of hex20 with its inner corner node moved off the grid
+// (and the mid-edge nodes around it on straight edges). Boundary nodes follow a linear field u = G x;
+// solving K u = 0 for the inner nodes must give the same linear field there, with both rules.
+TEST(SolidElements, Hex20PassesThePatchTest) {
+    Mesh mesh = box_hex20(1.0, 1.0, 1.0, 2, 2, 2);
+    const int centre = (1 * 3 + 1) * 3 + 1;  // box_hex8 numbering of corner (1, 1, 1)
+    ASSERT_TRUE((mesh.nodes[centre] - Vec3(0.5, 0.5, 0.5)).norm() < 1e-12);
+    mesh.nodes[centre] += Vec3(0.08, -0.05, 0.06);
+    // Mid-edge nodes on the edges from the centre: back to their edges' midpoints.
+    for (int e = 0; e < mesh.blocks[0].size(); ++e) {
+        const auto c = mesh.blocks[0].element(e);
+        static constexpr int edges[12][2] = {{0, 1}, {1, 2}, {2, 3}, {3, 0}, {4, 5}, {5, 6},
+                                             {6, 7}, {7, 4}, {0, 4}, {1, 5}, {2, 6}, {3, 7}};
+        for (int k = 0; k < 12; ++k) mesh.nodes[c[8 + k]] = (mesh.nodes[c[edges[k][0]]] + mesh.nodes[c[edges[k][1]]]) / 2;
+    }
+    std::vector<bool> boundary(mesh.node_count(), false);
+    for (const char* face : {"x0", "x1", "y0", "y1", "z0", "z1"})
+        for (int n : mesh.node_set(face)) boundary[n] = true;
+    Mat3 G;
+    G << 1e-3, 2e-4, -1e-4, 3e-4, -5e-4, 2e-4, 0.0, 1e-4, 7e-4;
+    const Eigen::VectorXd exact = linear_field(mesh.nodes, G);
+    for (bool reduced : {false, true}) {
+        const int n = 3 * mesh.node_count();
+        Eigen::MatrixXd K = Eigen::MatrixXd::Zero(n, n);
+        for (int e = 0; e < mesh.blocks[0].size(); ++e) {
+            const auto c = mesh.blocks[0].element(e);
+            const Eigen::MatrixXd Ke = solid::hex20_stiffness(mesh.element_coordinates(0, e), kSteel, reduced);
+            for (int a = 0; a < 20; ++a)
+                for (int b = 0; b < 20; ++b) K.block<3, 3>(3 * c[a], 3 * c[b]) += Ke.block<3, 3>(3 * a, 3 * b);
+        }
+        std::vector<int> inner, outer;
+        for (int i = 0; i < mesh.node_count(); ++i)
+            for (int d = 0; d < 3; ++d) (boundary[i] ? outer : inner).push_back(3 * i + d);
+        Eigen::MatrixXd Kii(inner.size(), inner.size()), Kio(inner.size(), outer.size());
+        Eigen::VectorXd uo(outer.size()), ui_exact(inner.size());
+        for (std::size_t a = 0; a < inner.size(); ++a) {
+            ui_exact(a) = exact(inner[a]);
+            for (std::size_t b = 0; b < inner.size(); ++b) Kii(a, b) = K(inner[a], inner[b]);
+            for (std::size_t b = 0; b < outer.size(); ++b) Kio(a, b) = K(inner[a], outer[b]);
+        }
+        for (std::size_t b = 0; b < outer.size(); ++b) uo(b) = exact(outer[b]);
+        const Eigen::VectorXd ui = Kii.ldlt().solve(-Kio * uo);
+        EXPECT_LT((ui - ui_exact).norm(), 1e-9 * ui_exact.norm()) << "reduced " << reduced;
+    }
 }

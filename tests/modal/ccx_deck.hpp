@@ -4,6 +4,7 @@
 //
 // Node order: C3D10 numbers the mid-edge nodes 01, 12, 02, 03, 13, 23, ours (Gmsh) 01, 12, 02, 03,
 // 23, 13: the last two are swapped on the way out.
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -83,12 +84,23 @@ inline std::vector<double> read_ccx_frequencies(const std::filesystem::path& dat
 }
 
 /// Prints ours beside ccx's frequencies for the first `modes` modes and returns the number of modes
-/// whose relative difference exceeds `tolerance` (the exit status of a peer test).
+/// whose relative difference exceeds `tolerance` (the exit status of a peer test). With rigid > 0,
+/// a mode whose |f| is below rigid times the largest frequency compared is a rigid-body mode: it
+/// must be one in both (round-off values, not compared).
 inline int compare_with_ccx(const std::vector<double>& f_ccx, const std::vector<double>& f_ours, int modes,
-                            double tolerance, const char* ccx_label, const char* ours_label) {
+                            double tolerance, const char* ccx_label, const char* ours_label, double rigid = 0.0) {
     std::printf("mode   %-14s  %-14s  rel. diff\n", ccx_label, ours_label);
     int failed = 0;
+    double scale = 0.0;
+    for (int k = 0; k < modes; ++k) scale = std::max(scale, std::abs(f_ccx[k]));
     for (int k = 0; k < modes; ++k) {
+        const bool rigid_ccx = std::abs(f_ccx[k]) < rigid * scale, rigid_ours = std::abs(f_ours[k]) < rigid * scale;
+        if (rigid_ccx || rigid_ours) {
+            const bool ok = rigid_ccx && rigid_ours;
+            failed += !ok;
+            std::printf("%4d  %14.7g  %14.7g  rigid-body mode%s\n", k + 1, f_ccx[k], f_ours[k], ok ? " in both" : " in one only: FAIL");
+            continue;
+        }
         const double d = f_ours[k] / f_ccx[k] - 1.0;
         const bool ok = std::abs(d) <= tolerance;
         failed += !ok;

@@ -107,3 +107,39 @@ TEST(ModalCase, BadInputIsNamed) {
                   .find("uq"),
               std::string::npos);
 }
+
+// The element formulation per part (`element`), the tetrahedra's mass rule (`tet_mass_rule`) and the
+// shapes written (`shapes`) take effect as written or are refused.
+TEST(ModalCase, ElementMassRuleAndShapesKeys) {
+    beam_mesh("msh41");
+    const std::string base = beam_case("beam_msh41.msh");
+    const auto first_frequency = [&](const std::string& name, const std::string& extra) {
+        modal::run_modal_case(modal::read_modal_case(write_case(name + ".toml", extra + base)));
+        return io::read_h5_matrix(kDir / (name + "_modes") / "modes.h5", "frequencies_hz")(0);
+    };
+    const double exact = first_frequency("rule_exact", "");
+    const double ccx = first_frequency("rule_ccx", "tet_mass_rule = \"ccx\"\n");
+    // ccx's 4-point C3D10 mass underintegrates N^T N: slightly different (measured ~1e-4), not equal.
+    EXPECT_NE(exact, ccx);
+    EXPECT_NEAR(ccx / exact, 1.0, 1e-3);
+    // shapes = 1: one VTU and one translation dataset.
+    first_frequency("one_shape", "shapes = 1\n");
+    int vtus = 0;
+    for (const auto& f : fs::directory_iterator(kDir / "one_shape_modes")) vtus += f.path().extension() == ".vtu";
+    EXPECT_EQ(vtus, 1);
+    io::H5Reader h5(kDir / "one_shape_modes" / "modes.h5");
+    EXPECT_TRUE(h5.has("mode_1/translation"));
+    EXPECT_FALSE(h5.has("mode_2/translation"));
+    // Refused: a formulation that does not fit the mesh, an unknown one, more shapes than modes.
+    std::string part_with = base;
+    part_with.replace(part_with.find("material = \"steel\"\n"), 19, "material = \"steel\"\nelement = \"C3D8\"\n");
+    EXPECT_NE(error_of(write_case("c3d8_on_tets.toml", part_with)).find("element = \"C3D8\" does not fit its tet10 elements"),
+              std::string::npos)
+        << error_of(write_case("c3d8_on_tets.toml", part_with));
+    part_with.replace(part_with.find("C3D8"), 4, "C3D9");
+    EXPECT_NE(error_of(write_case("c3d9.toml", part_with)).find("did you mean"), std::string::npos);
+    EXPECT_NE(error_of(write_case("shapes.toml", "shapes = 5\n" + base)).find("shapes: must be <= modes (4), got 5"),
+              std::string::npos);
+    EXPECT_NE(error_of(write_case("rule.toml", "tet_mass_rule = \"four_point\"\n" + base)).find("tet_mass_rule"),
+              std::string::npos);
+}

@@ -1,0 +1,61 @@
+#pragma once
+// CalculiX / Abaqus decks in fem-modal: the element formulation of each deck element type, a deck's
+// model, a frequency run of a deck as ccx runs it (`fem-modal model.inp`) with the eigenvalue table
+// in the layout of ccx's .dat file, and the conversion of our own models into decks.
+//
+// Element types and the formulation each gets (chosen so results compare with ccx element for
+// element; the peer tests in tests/deck measure the agreement):
+//
+//   C3D4    tet4, constant strain; consistent mass with the stiffness's one point, as ccx
+//           (Tet4MassRule::Centroid; a case file gets the exact mass unless it asks for ccx's rule)
+//   C3D10   tet10, 4-point stiffness rule; consistent mass with the same 4-point rule, as ccx
+//           (Tet10MassRule::FourPoint; likewise)
+//   C3D8    hex8, fully integrated trilinear brick (2x2x2 Gauss): the same element as ccx's
+//   C3D8I   hex8 with incompatible modes (Wilson-Taylor, statically condensed). ccx's C3D8I
+//           (shape8hu.f, three extra nodes per element) is a different incompatible-modes
+//           element: the frequencies differ by percents on coarse meshes (tests/deck)
+//   C3D20   hex20 serendipity brick, 3x3x3 Gauss for stiffness and mass
+//   C3D20R  the same with 2x2x2 Gauss for both, as ccx
+//   S4, S4R MITC4 shell, 6 DOF per node (ccx expands shells into C3D8I bricks: a different
+//           formulation; both converge to the same plate answer)
+#include <filesystem>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "assembly/model.hpp"
+#include "deck/deck.hpp"
+#include "modal/modal.hpp"
+
+namespace fem::modal {
+
+/// The element kernel of deck type `type` (table above) for material m; `thickness` for shells.
+/// `options.mass` and `options.tet10_mass_rule` apply where the type has a choice.
+ElementKernel element_kernel(std::string_view type, const ElasticMaterial& m, double thickness, const SolidOptions& options);
+/// DOFs per node of a deck type: 6 for shells, 3 for solids.
+int dofs_per_node(std::string_view type);
+/// The deck types that fit a mesh shape (for case files: hex8 -> C3D8I, C3D8; the first is the default).
+std::vector<std::string> element_types_for(ElementShape shape);
+
+/// Adds the deck's blocks, *BOUNDARY and *EQUATION to `model` (whose mesh is deck.mesh).
+void build_deck_model(const deck::Deck& deck, Model& model);
+
+/// The eigenvalue table as ccx prints it in <job>.dat ("E I G E N V A L U E   O U T P U T": mode,
+/// eigenvalue, omega [rad/time], frequency [cycles/time], imaginary part), so a user's scripts that
+/// read ccx's .dat read ours.
+std::string ccx_eigenvalue_table(const ModalResult& result);
+
+struct DeckRunOptions {
+    std::filesystem::path output;  // default: <deck folder>/<deck stem>_modes
+    int modes = 0;                 // 0: the deck's *FREQUENCY count
+    int shapes = -1;               // mode shapes written; < 0 all, 0 none
+};
+
+/// Runs the frequency step of a deck: reads it, builds the model, solves with rigid-body modes
+/// admitted (ModalOptions::admit_rigid_body_modes, as ccx solves a free model), writes
+/// frequencies.csv, modes.h5, the shapes asked for and <deck stem>.dat (the eigenvalue table) into
+/// the output folder (io::RunFolder) and returns the table followed by notes on keywords not acted
+/// upon. InputError for a deck without *FREQUENCY.
+std::string run_deck(const std::filesystem::path& deck, const DeckRunOptions& options = {});
+
+}  // namespace fem::modal

@@ -1,0 +1,19 @@
+// Fuzz target: the Abaqus/CalculiX deck reader (deck/deck.hpp over input/numbers.hpp). Any text must
+// end in a Deck or an InputError (*INCLUDE paths resolve under the corpus folder).
+#include <cstddef>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <string_view>
+
+#include "core/error.hpp"
+#include "deck/deck.hpp"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+    try {
+        fem::deck::parse_deck(std::string_view(reinterpret_cast<const char*>(data), size), "fuzz.inp", FEM_FUZZ_BASE);
+    } catch (const fem::InputError& e) {
+        if (std::getenv("FEM_FUZZ_VERBOSE")) std::fprintf(stderr, "refused: %s\n", e.what());  // for triage
+    }
+    return 0;
+}
