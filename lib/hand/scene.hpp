@@ -1,0 +1,144 @@
+#pragma once
+// A hand scene of thesis Ch 4 as plain data, and the explicit model built from it: the hand (drum +
+// Table 4-1 fingers, hand.hpp), deformable ellipsoidal objects (the football of Sec 4.2, the
+// ellipsoid of Sec 4.4), rigid plates moving with a speed schedule (the conveyor pallet), contact
+// pairs, gravity and the symmetry plane of the half model. Each field is one key of a future case
+// file (issue 11 item 6); nothing of a particular study is hard-wired here.
+//
+//   hand::Scene s;                                   // hand = Table 4-1 on the stepped drum
+//   s.objects.push_back({...football...});
+//   s.plates.push_back({...pallet...});
+//   s.contacts = {{"finger-A", "football", mu}, ..., {"football", "pallet", mu}};
+//   hand::HandModel hm(s);                           // mesh + ExplicitModel + contact interfaces
+//   ExplicitSolver solver(hm.model(), options);
+//
+// Part names: fingers "finger-<name>", objects and plates by their `part`, and "drum" for the rigid
+// drum surface (a contact master only; the finger roots are tied to its motion).
+#include <map>
+#include <memory>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "contact/contact.hpp"
+#include "explicit/solver.hpp"
+#include "hand/hand.hpp"
+#include "mesh/ellipsoid.hpp"
+
+namespace fem::hand {
+
+/// Piecewise-constant speed: `speed` from time `from` on (the first entry's speed also before it).
+struct SpeedStep {
+    double from = 0.0;
+    double speed = 0.0;
+};
+/// The schedule as a time function whose steps rise over `ramp` seconds (the time function needs
+/// increasing times; its integral, the displacement, is exact). Throws InputError for an empty or
+/// unordered schedule.
+contact::TimeFunction speed_schedule(const std::vector<SpeedStep>& steps, double ramp = 1e-9);
+
+/// A deformable ellipsoid (hexahedral O-grid, mesh/ellipsoid.hpp), long axis along x.
+struct EllipsoidObject {
+    std::string part = "object";
+    Vec3 semi_axes = Vec3::Zero();
+    Vec3 centre = Vec3::Zero();
+    EllipsoidGrid grid;
+    bool half = true;            // keep only z <= centre.z (the half model of Sec 4.2; cut plane z = centre.z)
+    ElasticMaterial material;    // density replaced when mass > 0
+    double mass = 0.0;           // > 0: mass of the modelled part [kg], density = mass / mesh volume
+    Vec3 initial_velocity = Vec3::Zero();
+    double alpha = 0.0;          // mass damping [1/s] (thesis: objects undamped)
+};
+
+/// A rigid flat plate translating along `direction` with a speed schedule (the conveyor pallet).
+/// Spanned by the full edge vectors u, v about `centre`; contact pushes towards u x v.
+struct Plate {
+    std::string part = "plate";
+    Vec3 centre = Vec3::Zero();
+    Vec3 u = Vec3::UnitX(), v = -Vec3::UnitZ();
+    int nu = 2, nv = 1;          // segments (Table 4-2's pallet: 2 shells)
+    Vec3 direction = -Vec3::UnitX();
+    std::vector<SpeedStep> schedule;
+    double depth = 0.03;         // deepest penetration taken as contact [m]
+    contact::RigidMotion motion() const;
+};
+
+/// A contact pair: the slave part's surface nodes against the master part's faces (two_way: and
+/// back). A rigid master is a plate's part name or "drum".
+struct ContactPair {
+    std::string slave, master;
+    contact::FrictionLaw friction;
+    bool two_way = true;         // deformable pairs only
+    double penalty_scale = 0.1;  // LS-DYNA SLSFAC (contact/contact.hpp)
+};
+
+/// Frame of the fingers' mass damping. LS-DYNA's *DAMPING_PART_MASS damps absolute velocity, so
+/// the drum's rigid rotation is damped too and the fingers trail (the thesis's "cannot spring back
+/// when the drum rotates", Sec 3.5.2): `absolute`. `drum`: damping of the velocity relative to the
+/// drum's rigid rotation (-alpha m (v - omega x r)), the co-rotating variant.
+enum class DampingFrame { absolute, drum };
+
+struct Scene {
+    HandSpec hand;
+    std::vector<EllipsoidObject> objects;
+    std::vector<Plate> plates;
+    std::vector<ContactPair> contacts;
+    Vec3 gravity = Vec3::Zero();
+    double gravity_on = 0.0;
+    /// Half objects get u_z = 0 on their cut plane (Table 4-3 "ellipsoid symmetric plane DOF UZ = 0").
+    bool symmetry = true;
+    DampingFrame damping_frame = DampingFrame::absolute;
+    /// true: the fingers start with the drum's rigid-rotation velocity (spinning, undeformed);
+    /// false: at rest while their roots start turning (a jolt at t = 0).
+    bool fingers_start_spinning = true;
+    /// Drum surface segments around the circumference (contact master "drum").
+    int drum_segments = 48;
+};
+
+/// The rigid drum surface: each level a cylinder of quads, outward (a contact master).
+contact::RigidSurface drum_surface(const Drum& drum, int segments, double depth);
+
+/// The built model. Owns the mesh's model; contact interfaces are reachable by pair name
+/// "<slave> on <master>".
+class HandModel {
+public:
+    explicit HandModel(const Scene& scene);
+    ExplicitModel& model() { return *model_; }
+    const Mesh& mesh() const { return model_->mesh(); }
+    const Scene& scene() const { return scene_; }
+
+    struct Pair {
+        std::string name;
+        const ContactPair* spec = nullptr;
+        contact::ContactInterface* contact = nullptr;
+        double element_size = 0.0;   // smallest mean segment size of the two surfaces [m]
+    };
+    const std::vector<Pair>& pairs() const { return pairs_; }
+    contact::ContactInterface& contact(const std::string& name) const;
+
+    /// Nodes of a part (every node of its elements, sorted).
+    std::vector<int> part_nodes(const std::string& part) const;
+    /// Mass of a part (density x mesh volume) [kg].
+    double part_mass(const std::string& part) const;
+    /// Mass-weighted centre of a part's nodes at positions x (lumped masses: element volume / 8).
+    Vec3 centre_of_mass(const std::string& part, std::span<const Vec3> x) const;
+    /// Tip-centre node of finger `name`.
+    int tip_node(const std::string& finger) const;
+    /// Where a material point of the drum-fixed frame with reference position X is at time t.
+    Vec3 drum_position(const Vec3& X, double t) const { return drum_motion_.position(X, t); }
+    const contact::RigidMotion& drum_motion() const { return drum_motion_; }
+    /// Current position of a plate's reference centre.
+    Vec3 plate_centre(const std::string& part, double t) const;
+
+private:
+    Scene scene_;
+    std::unique_ptr<ExplicitModel> model_;
+    std::vector<Pair> pairs_;
+    contact::RigidMotion drum_motion_;
+    std::map<std::string, std::vector<double>> lumped_;  // per part: lumped node mass (aligned with part_nodes)
+    std::map<std::string, std::vector<int>> part_nodes_;
+    std::map<std::string, double> part_mass_;
+};
+
+}  // namespace fem::hand
