@@ -171,6 +171,27 @@ ContactSurface ContactSurface::from_part(const Mesh& mesh, std::string_view part
     return surf;
 }
 
+ContactSurface ContactSurface::merge(std::string name, const std::vector<ContactSurface>& parts) {
+    ContactSurface m;
+    m.name = std::move(name);
+    std::vector<std::pair<int, double>> nodes;
+    for (const auto& p : parts) {
+        if (p.rigid) throw InputError(fmt::format("contact surface '{}': cannot merge rigid surface '{}'", m.name, p.name));
+        m.segments.insert(m.segments.end(), p.segments.begin(), p.segments.end());
+        for (std::size_t i = 0; i < p.nodes.size(); ++i) nodes.emplace_back(p.nodes[i], p.node_stiffness[i]);
+    }
+    std::sort(nodes.begin(), nodes.end());
+    for (std::size_t i = 0; i < nodes.size(); ++i) {
+        if (i > 0 && nodes[i].first == nodes[i - 1].first)
+            throw InputError(fmt::format("contact surface '{}': node {} belongs to two of the merged parts", m.name,
+                                         nodes[i].first));
+        m.nodes.push_back(nodes[i].first);
+        m.node_stiffness.push_back(nodes[i].second);
+    }
+    if (m.segments.empty()) throw InputError(fmt::format("contact surface '{}': nothing to merge", m.name));
+    return m;
+}
+
 double ContactSurface::mean_segment_size() const {
     if (segments.empty()) return 0.0;
     double s = 0.0;

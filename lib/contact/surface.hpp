@@ -51,6 +51,10 @@ struct ContactSurface {
     /// surface elements.
     static ContactSurface from_part(const Mesh& mesh, std::string_view part, const ElasticMaterial& material,
                                     double scale_factor = 1.0);
+    /// One surface from several deformable parts' surfaces (e.g. every finger of a hand against one
+    /// object: one interface, one search, and one stable-step bound instead of one per finger).
+    /// The parts must not share nodes; throws InputError naming the parts otherwise.
+    static ContactSurface merge(std::string name, const std::vector<ContactSurface>& parts);
     /// Smallest / mean segment size (square root of area): for margins and cell sizes.
     double mean_segment_size() const;
 };

@@ -69,7 +69,7 @@ Mat3 axis_rotation(const Vec3& axis, double angle) { return Eigen::AngleAxisd(an
 
 Placement place_finger(const HandSpec& h, const FingerRow& f) {
     Placement p;
-    p.angle = h.theta_sign * f.initial_angle;
+    p.angle = h.drum.initial_angle + h.theta_sign * f.initial_angle;
     const double s = std::sin(p.angle), c = std::cos(p.angle);
     const Vec3 er(s, 0.0, -c), et(c, 0.0, s), ey = Vec3::UnitY();
     // Mesh frame (major x, minor y, axis z) -> unrolled local frame: major along y', minor along

@@ -61,6 +61,9 @@ struct Drum {
     Vec3 centre = Vec3::Zero();
     std::vector<DrumLevel> levels;
     contact::TimeFunction omega;
+    /// Drum angle at t = 0 [rad] (in its sense of rotation): every finger starts this much further
+    /// round (a run that starts part-way through a turn, e.g. just before contact).
+    double initial_angle = 0.0;
     /// The drum's rigid motion (rotation about -y through the centre at omega).
     contact::RigidMotion motion() const;
 };
@@ -94,7 +97,7 @@ struct HandSpec {
 struct Placement {
     Vec3 root = Vec3::Zero();
     Mat3 rotation = Mat3::Identity();
-    double angle = 0.0;              // phi(0) [rad]
+    double angle = 0.0;              // phi(0) = drum initial angle + theta_sign theta_f [rad]
     Vec3 axis() const { return rotation.col(2); }  // root -> tip
 };
 Placement place_finger(const HandSpec& hand, const FingerRow& finger);

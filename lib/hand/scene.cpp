@@ -1,6 +1,7 @@
 #include "hand/scene.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <numbers>
 #include <set>
@@ -86,6 +87,25 @@ private:
     std::vector<double> mass_;
 };
 
+// Brackets the contact providers (which the solver calls in order): the first instance notes the
+// time, the second adds the elapsed time to the shared total.
+class ContactClock final : public ForceProvider {
+public:
+    ContactClock(std::shared_ptr<double> total, std::shared_ptr<std::chrono::steady_clock::time_point> start, bool stop)
+        : total_(std::move(total)), start_(std::move(start)), stop_(stop) {}
+    std::string name() const override { return stop_ ? "contact clock (stop)" : "contact clock (start)"; }
+    void add_forces(double, const NodalState&, std::vector<Vec3>&, std::vector<Vec3>&) override {
+        const auto now = std::chrono::steady_clock::now();
+        if (stop_) *total_ += std::chrono::duration<double>(now - *start_).count();
+        else *start_ = now;
+    }
+
+private:
+    std::shared_ptr<double> total_;
+    std::shared_ptr<std::chrono::steady_clock::time_point> start_;
+    bool stop_;
+};
+
 }  // namespace
 
 HandModel::HandModel(const Scene& scene) : scene_(scene) {
@@ -135,6 +155,12 @@ HandModel::HandModel(const Scene& scene) : scene_(scene) {
         part_mass_[part] = total;
     }
     drum_motion_ = scene_.hand.drum.motion();
+    block_finger_.assign(msh.blocks.size(), "");
+    node_finger_.assign(msh.node_count(), "");
+    for (const auto& f : scene_.hand.fingers) {
+        for (int b : msh.blocks_of_part("finger-" + f.name)) block_finger_[b] = f.name;
+        for (int n : part_nodes_["finger-" + f.name]) node_finger_[n] = f.name;
+    }
     // Fingers: damping, roots tied to the drum, initial velocity.
     std::vector<std::pair<int, double>> node_alpha;
     for (const auto& f : scene_.hand.fingers) {
@@ -154,12 +180,22 @@ HandModel::HandModel(const Scene& scene) : scene_(scene) {
         if (o.half && scene_.symmetry) model_->fix(msh.node_set("symmetry-" + o.part), Dofs::of(Dofs::z));
     }
     if (scene_.gravity.norm() > 0.0) model_->set_gravity(scene_.gravity, scene_.gravity_on);
-    // Contact pairs.
+    // Contact pairs, bracketed by the contact clock.
+    clock_ = std::make_shared<double>(0.0);
+    auto start = std::make_shared<std::chrono::steady_clock::time_point>();
+    model_->add_force_provider(std::make_unique<ContactClock>(clock_, start, false));
     for (const auto& c : scene_.contacts) {
         const std::string name = c.slave + " on " + c.master;
-        if (!material.count(c.slave))
+        if (!material.count(c.slave) && c.slave != "fingers")
             throw InputError(fmt::format("hand scene: contact '{}': slave part '{}' is not a deformable part", name, c.slave));
-        auto slave = contact::ContactSurface::from_part(msh, c.slave, material.at(c.slave));
+        auto surface = [&](const std::string& part) {
+            if (part != "fingers") return contact::ContactSurface::from_part(msh, part, material.at(part));
+            std::vector<contact::ContactSurface> each;
+            for (const auto& f : scene_.hand.fingers)
+                each.push_back(contact::ContactSurface::from_part(msh, "finger-" + f.name, scene_.hand.rubber));
+            return contact::ContactSurface::merge("fingers", each);
+        };
+        auto slave = surface(c.slave);
         contact::ContactOptions opt;
         opt.friction = c.friction;
         opt.penalty_scale = c.penalty_scale;
@@ -172,8 +208,8 @@ HandModel::HandModel(const Scene& scene) : scene_(scene) {
             auto r = contact::RigidSurface::plane(it->centre, it->u, it->v, it->nu, it->nv, it->depth, it->motion());
             r.surface.name = it->part;
             p.contact = &contact::add_contact(*model_, contact::ContactInterface(name, std::move(slave), std::move(r), opt));
-        } else if (material.count(c.master)) {
-            auto master = contact::ContactSurface::from_part(msh, c.master, material.at(c.master));
+        } else if (material.count(c.master) || c.master == "fingers") {
+            auto master = surface(c.master);
             p.element_size = std::min(p.element_size, master.mean_segment_size());
             opt.two_way = c.two_way;
             p.contact = &contact::add_contact(*model_, contact::ContactInterface(name, std::move(slave), std::move(master), opt));
@@ -183,6 +219,15 @@ HandModel::HandModel(const Scene& scene) : scene_(scene) {
         }
         pairs_.push_back(p);
     }
+    model_->add_force_provider(std::make_unique<ContactClock>(clock_, start, true));
+}
+
+void HandModel::set_plate_schedule(const std::string& part, std::vector<SpeedStep> schedule) {
+    auto it = std::find_if(scene_.plates.begin(), scene_.plates.end(), [&](const Plate& q) { return q.part == part; });
+    if (it == scene_.plates.end()) throw InputError(fmt::format("hand model: no plate '{}'", part));
+    it->schedule = std::move(schedule);
+    for (auto& p : pairs_)
+        if (p.spec->master == part) p.contact->rigid()->motion = it->motion();
 }
 
 contact::ContactInterface& HandModel::contact(const std::string& name) const {
@@ -211,6 +256,10 @@ Vec3 HandModel::centre_of_mass(const std::string& part, std::span<const Vec3> x)
     for (std::size_t k = 0; k < nodes.size(); ++k) s += m[k] * x[nodes[k]], total += m[k];
     return s / total;
 }
+
+const std::string& HandModel::finger_of_block(int block) const { return block_finger_.at(block); }
+
+const std::string& HandModel::finger_of_node(int node) const { return node_finger_.at(node); }
 
 int HandModel::tip_node(const std::string& finger) const { return mesh().node_set("tip-centre-" + finger)[0]; }
 

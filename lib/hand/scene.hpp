@@ -65,7 +65,9 @@ struct Plate {
 };
 
 /// A contact pair: the slave part's surface nodes against the master part's faces (two_way: and
-/// back). A rigid master is a plate's part name or "drum".
+/// back). A rigid master is a plate's part name or "drum". "fingers" stands for every finger of
+/// the hand as one surface (one search and one stable-step bound; forces per finger follow from
+/// the contact points' owning elements, HandModel::finger_of_block).
 struct ContactPair {
     std::string slave, master;
     contact::FrictionLaw friction;
@@ -123,6 +125,10 @@ public:
     double part_mass(const std::string& part) const;
     /// Mass-weighted centre of a part's nodes at positions x (lumped masses: element volume / 8).
     Vec3 centre_of_mass(const std::string& part, std::span<const Vec3> x) const;
+    /// The finger ("A".."E") whose part owns mesh block b; empty when none.
+    const std::string& finger_of_block(int block) const;
+    /// The finger owning node n; empty when none.
+    const std::string& finger_of_node(int node) const;
     /// Tip-centre node of finger `name`.
     int tip_node(const std::string& finger) const;
     /// Where a material point of the drum-fixed frame with reference position X is at time t.
@@ -130,6 +136,12 @@ public:
     const contact::RigidMotion& drum_motion() const { return drum_motion_; }
     /// Current position of a plate's reference centre.
     Vec3 plate_centre(const std::string& part, double t) const;
+    /// Replaces a plate's speed schedule during a run (the contact pairs it masters follow). The new
+    /// schedule must agree with the old one up to the current time, or the plate jumps.
+    void set_plate_schedule(const std::string& part, std::vector<SpeedStep> schedule);
+    /// Wall-clock seconds spent in the contact pairs' force evaluations so far (search, projection,
+    /// friction): the contact share of the step time.
+    double contact_seconds() const { return clock_ ? *clock_ : 0.0; }
 
 private:
     Scene scene_;
@@ -139,6 +151,8 @@ private:
     std::map<std::string, std::vector<double>> lumped_;  // per part: lumped node mass (aligned with part_nodes)
     std::map<std::string, std::vector<int>> part_nodes_;
     std::map<std::string, double> part_mass_;
+    std::shared_ptr<double> clock_;
+    std::vector<std::string> block_finger_, node_finger_;
 };
 
 }  // namespace fem::hand

@@ -27,8 +27,8 @@ double centre_jacobian(const std::array<Vec3, 8>& p) {
 Mesh hex_ellipsoid(const Vec3& axes, const EllipsoidGrid& g, bool half, std::string part) {
     if (!(axes.minCoeff() > 0.0))
         throw InputError(fmt::format("hex_ellipsoid '{}': semi-axes ({}, {}, {}) must be > 0", part, axes.x(), axes.y(), axes.z()));
-    if (g.nx < 1 || g.ny < 1 || g.nz < 1 || g.layers < 1 || !(g.inner_scale > 0.0 && g.inner_scale < 1.0))
-        throw InputError(fmt::format("hex_ellipsoid '{}': needs nx, ny, nz, layers >= 1 and 0 < inner_scale < 1 "
+    if (g.nx < 1 || g.ny < 1 || g.nz < 1 || g.layers < 1 || !(g.inner_scale > 0.0 && g.inner_scale * std::sqrt(3.0) < 1.0))
+        throw InputError(fmt::format("hex_ellipsoid '{}': needs nx, ny, nz, layers >= 1 and 0 < inner_scale < 1 / sqrt(3) "
                                      "(got {}, {}, {}, {}, {})", part, g.nx, g.ny, g.nz, g.layers, g.inner_scale));
     if (half && g.nz % 2 != 0)
         throw InputError(fmt::format("hex_ellipsoid '{}': a half model needs an even nz (got {})", part, g.nz));

@@ -27,7 +27,10 @@ namespace fem {
 struct EllipsoidGrid {
     int nx = 8, ny = 8, nz = 4;   // inner-block elements along x, y, z (z over the whole ellipsoid)
     int layers = 3;               // element layers from the inner block to the surface
-    double inner_scale = 0.5;     // the inner block spans [-s a, s a] x [-s b, s b] x [-s c, s c]
+    // The inner block spans [-s a, s a] x [-s b, s b] x [-s c, s c]; its corners must stay well
+    // inside (s sqrt(3) < 1): the first ring layer's corner elements are 1 - s sqrt(3) thick there.
+    // 0.4 keeps the football's smallest element (Table 2-1 length 5.1 mm) above the fingers' step.
+    double inner_scale = 0.4;
 };
 
 /// Hexahedral ellipsoid with semi-axes (a, b, c) along x, y, z, centred at the origin; `half`:
