@@ -43,6 +43,7 @@
 #include "damping/signal.hpp"
 #include "explicit/parallel.hpp"
 #include "explicit/solver.hpp"
+#include "hand/football.hpp"
 #include "hand/scene.hpp"
 #include "io/atomic_file.hpp"
 #include "io/table.hpp"
@@ -56,77 +57,16 @@ using nlohmann::json;
 
 namespace {
 
-// --- Table 4-3 and the reconstructions of THESIS_CH4_5.md Sec 9 (README) -----------------------
-constexpr double kFast = 18.0 * inch;        // 0.4572 m/s
-constexpr double kSlow = 10.0 * inch;        // 0.254 m/s
-const Vec3 kFootballCentre(685.5 * mm, 50.8 * mm, 184.0 * mm);
-const Vec3 kFootballAxes(122 * mm, 66 * mm, 66 * mm);   // 244/132/132 mm
-constexpr double kFootballHalfMass = 0.425 / 2;        // raw weight / 2 (half model)
-constexpr double kMu = 0.4;                             // mu_s; Eq 2-35 with c_d = 0
-constexpr double kPalletOffset = 8 * mm;                // Fig 4-4: football 8 mm behind the pallet centre
 const std::vector<std::string> kFingers = {"A", "B", "C", "D", "E"};
-// Pairs of fingers whose sweeps overlap (neighbours on a level, and upper over lower within 22.5 deg).
-const std::vector<std::pair<std::string, std::string>> kFingerPairs = {
-    {"A", "B"}, {"C", "D"}, {"D", "E"}, {"A", "C"}, {"A", "D"}, {"B", "D"}, {"B", "E"}};
+using football::Case;
+using Variant = football::Options;
+const std::vector<Case> kCases = football::table_4_4();
+const auto kFingerPairs = football::neighbour_pairs();
 
-struct Case {
-    int id = 0;
-    double t_switch = -1.0;  // < 0: constant 18 in/s (Case 1)
-    /// Pallet speed over model time tau = t - t0.
-    std::vector<SpeedStep> schedule(double t0 = 0.0) const {
-        if (t_switch < 0) return {{0.0, kFast}};
-        return {{0.0, kFast}, {t_switch - t0, kSlow}};
-    }
-};
-// Table 4-4.
-const std::vector<Case> kCases = {{1, -1.0}, {2, 1.38}, {3, 1.28}, {4, 1.19}, {5, 1.06}};
-
-struct Variant {
-    DampingFrame frame = DampingFrame::absolute;
-    double roll_sign = 1.0;
-    double decay = 0.0;            // c_d of Eq 2-35
-    bool football = true;
-    bool finger_pairs = false;     // finger-finger contact pairs (off: they do not touch, README)
-};
-
-// The scene of case c as seen from physical time t0 on (model time tau = t - t0): the drum already
-// turned by omega t0, the football and pallet moved by -v t0, the schedule shifted (README "Cost":
-// CTest starts at t0 = kStart with the fingers undeformed, spinning).
-Scene football_scene(const Case& c, const Variant& v, double t0 = 0.0) {
-    Scene s;
-    s.hand.drum.initial_angle = s.hand.drum.omega(0.0) * t0;
-    s.hand.roll_sign = v.roll_sign;
-    s.damping_frame = v.frame;
-    s.gravity = Vec3(0, -9.81, 0);
-    if (!v.football) return s;
-    EllipsoidObject ball;
-    ball.part = "football";
-    ball.semi_axes = kFootballAxes;
-    ball.centre = kFootballCentre - Vec3(kFast * t0, 0, 0);
-    ball.grid = EllipsoidGrid{8, 8, 4, 3, 0.5};  // 512 elements, 678 nodes (Table 4-2: 512 / 677)
-    ball.half = true;
-    ball.material = ElasticMaterial::make("football rubber (Table 4-2)", 6.1e6, 0.49, 275.0);
-    ball.mass = kFootballHalfMass;  // density from the raw weight (Sec 4.2), not the printed 275
-    ball.initial_velocity = Vec3(-kFast, 0, 0);
-    s.objects.push_back(ball);
-    Plate pallet;
-    pallet.part = "pallet";
-    // Top at the football's bottom (y = 50.8 - 66 mm), 200 (x) x 50 (z) mm, from the plane z = 184
-    // towards the drum, centred 8 mm downstream of the football.
-    pallet.centre = Vec3(kFootballCentre.x() - kFast * t0 - kPalletOffset, kFootballCentre.y() - kFootballAxes.y(), 159 * mm);
-    pallet.u = Vec3(200 * mm, 0, 0);
-    pallet.v = Vec3(0, 0, -50 * mm);
-    pallet.schedule = c.schedule(t0);
-    s.plates.push_back(pallet);
-    const contact::FrictionLaw mu{kMu, 0.3, v.decay};  // Table 4-3: 0.4 / 0.3
-    // Every finger against the football as one surface (one search, one stable-step bound: five
-    // separate pairs would each add a penalty frequency to the step, README "Time step").
-    s.contacts.push_back({"fingers", "football", mu, true});
-    if (v.finger_pairs)
-        for (const auto& [a, b] : kFingerPairs) s.contacts.push_back({"finger-" + a, "finger-" + b, mu, true});
-    s.contacts.push_back({"football", "pallet", mu, false});
-    s.contacts.push_back({"football", "drum", mu, false});
-    return s;
+// The study's scene of case c from physical time t0 on (lib/hand/football.hpp).
+Scene football_scene(const Case& c, Variant v, double t0 = 0.0) {
+    v.start = t0;
+    return football::scene(c, v);
 }
 
 // Per-cycle bookkeeping: the solver calls force providers every cycle in order, and this one is
@@ -487,9 +427,9 @@ void write_snapshots(const std::filesystem::path& dir, const std::string& stem, 
             if (sI + 2 >= surfaces.size()) o << "\n";  // after the last finger and after the football
         }
         const Vec3 pc = hm.plate_centre("pallet", t - t0);
-        for (double dz : {0.0, -50e-3}) o << 1e3 * (pc.x() - 0.1) << ' ' << 1e3 * pc.y() << ' ' << 1e3 * (184e-3 + dz) << '\n'
-                                          << 1e3 * (pc.x() + 0.1) << ' ' << 1e3 * pc.y() << ' ' << 1e3 * (184e-3 + dz) << "\n\n";
-        o << "\n";
+        for (auto [dx, dz] : {std::pair{-0.1, 0.0}, {0.1, 0.0}, {0.1, -50e-3}, {-0.1, -50e-3}, {-0.1, 0.0}})
+            o << 1e3 * (pc.x() + dx) << ' ' << 1e3 * pc.y() << ' ' << 1e3 * (184e-3 + dz) << '\n';
+        o << "\n\n";
         for (const auto& l : hm.scene().hand.drum.levels) {
             for (double y : {l.y_bottom, l.y_top}) {
                 for (int i = 0; i <= 48; ++i) {
@@ -520,18 +460,25 @@ int main(int argc, char** argv) {
         o.out = out;
         o.cases = kCases;
         if (const char* only = std::getenv("FOOTBALL_ONLY")) o.cases = {kCases.at(std::atoi(only) - 1)};
-        // The co-rotating damping variant (fingers only, to the lag time) runs beside the cases.
-        std::fflush(stdout);
-        const pid_t lag_pid = fork();
-        if (lag_pid == 0) {
-            RunOptions lo = o;
-            lo.start = 0.0, lo.end = kLagTime + 1e-3, lo.window = lo.end, lo.name = "corotating", lo.cases = {kCases[0]};
-            run(Variant{DampingFrame::drum, 1.0, 0.0, false}, lo);
+        // FOOTBALL_REPLOT=1: no runs, the outputs and checks from the run records already in the
+        // results folder (e.g. after changing a figure).
+        if (!std::getenv("FOOTBALL_REPLOT")) {
+            // The co-rotating damping variant (fingers only, to the lag time) runs beside the cases.
             std::fflush(stdout);
-            std::_Exit(0);
+            const pid_t lag_pid = fork();
+            if (lag_pid < 0) throw SolverError("football_sweep: fork() failed");
+            if (lag_pid == 0) {
+                RunOptions lo = o;
+                lo.start = 0.0, lo.end = kLagTime + 1e-3, lo.window = lo.end, lo.name = "corotating", lo.cases = {kCases[0]};
+                Variant corot;
+                corot.frame = DampingFrame::drum, corot.football = false;
+                run(corot, lo);
+                std::fflush(stdout);
+                std::_Exit(0);
+            }
+            run(Variant{}, o);
+            wait_children();
         }
-        run(Variant{}, o);
-        wait_children();
         std::map<int, Record> res;
         for (const auto& c : o.cases) {
             res[c.id] = load(out / fmt::format("football-case-{}.json", c.id));
