@@ -3,6 +3,7 @@
 // set, the speed schedule, and a short explicit run of the whole scene.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -100,4 +101,70 @@ TEST(Hand, SpeedScheduleStepsAndIntegral) {
     EXPECT_DOUBLE_EQ(f(2.0), 0.254);
     EXPECT_NEAR(f.integral(3.0), 0.457 * 1.19 + 0.254 * 1.81, 1e-9);
     EXPECT_THROW(speed_schedule({{1.0, 1.0}, {0.5, 2.0}}), InputError);
+}
+
+TEST(Hand, MergedSurfaceKeepsEveryFingersFacesAndNodes) {
+    const Mesh m = hand_mesh(HandSpec{});
+    const auto rubber = finger::rubber();
+    std::vector<contact::ContactSurface> each;
+    std::size_t segments = 0, nodes = 0;
+    for (const char* f : {"A", "B", "C", "D", "E"}) {
+        each.push_back(contact::ContactSurface::from_part(m, std::string("finger-") + f, rubber));
+        segments += each.back().segments.size(), nodes += each.back().nodes.size();
+    }
+    const auto merged = contact::ContactSurface::merge("fingers", each);
+    EXPECT_EQ(merged.segments.size(), segments);
+    EXPECT_EQ(merged.nodes.size(), nodes);
+    EXPECT_TRUE(std::is_sorted(merged.nodes.begin(), merged.nodes.end()));
+    EXPECT_THROW(contact::ContactSurface::merge("twice", {each[0], each[0]}), InputError);
+}
+
+TEST(Hand, DrumSurfaceFacesOutward) {
+    const auto r = drum_surface(stepped_drum(), 24, 0.01);
+    ASSERT_EQ(r.surface.segments.size(), 48u);
+    for (const auto& s : r.surface.segments) {
+        const Vec3 c = 0.25 * (r.points[s.n[0]] + r.points[s.n[1]] + r.points[s.n[2]] + r.points[s.n[3]]);
+        const Vec3 n = (r.points[s.n[1]] - r.points[s.n[0]]).cross(r.points[s.n[3]] - r.points[s.n[0]]);
+        EXPECT_GT(n.dot(Vec3(c.x(), 0, c.z())), 0.0);  // the quad's normal points away from the axis
+    }
+}
+
+// A scene of the hand alone, spinning at the drum's speed from t = 0: with co-rotating damping the
+// fingers feel no drag and keep the rigid rotation; with absolute damping they start to trail.
+TEST(Hand, CoRotatingDampingDoesNotDragARigidSpin) {
+    auto tip_lag = [](DampingFrame frame) {
+        Scene s;
+        s.hand.fingers = {table_4_1()[3]};  // finger D only
+        s.damping_frame = frame;
+        HandModel hm(s);
+        ExplicitOptions opt;
+        opt.end_time = 2e-3;
+        opt.print_summary = false;
+        opt.progress = false;
+        ExplicitSolver solver(hm.model(), opt);
+        solver.run();
+        const int n = hm.tip_node("D");
+        const Vec3 rigid = hm.drum_position(solver.state().X[n], solver.time());
+        return -(solver.state().x[n] - rigid).dot(hm.drum_motion().velocity_at(rigid, solver.time()).normalized());
+    };
+    const double absolute = tip_lag(DampingFrame::absolute), corotating = tip_lag(DampingFrame::drum);
+    EXPECT_GT(absolute, 1e-5);                     // trails: alpha m v drag
+    EXPECT_LT(std::abs(corotating), 0.05 * absolute);  // only the centrifugal stretch's tangential share
+}
+
+TEST(Hand, PlateScheduleCanChangeDuringARun) {
+    Scene s;
+    s.hand.fingers = {table_4_1()[3]};
+    Plate p;
+    p.part = "pallet";
+    p.centre = Vec3(0.5, -0.02, 0.16);
+    p.u = Vec3(0.2, 0, 0), p.v = Vec3(0, 0, -0.05);
+    p.schedule = {{0.0, 1.0}};
+    s.plates.push_back(p);
+    HandModel hm(s);
+    EXPECT_NEAR(hm.plate_centre("pallet", 1.0).x(), 0.5 - 1.0, 1e-12);
+    hm.set_plate_schedule("pallet", {{0.0, 1.0}, {0.5, 0.25}});
+    EXPECT_NEAR(hm.plate_centre("pallet", 0.5).x(), 0.5 - 0.5, 1e-6);      // unchanged up to the switch
+    EXPECT_NEAR(hm.plate_centre("pallet", 1.0).x(), 0.5 - 0.625, 1e-6);
+    EXPECT_THROW(hm.set_plate_schedule("belt", {{0.0, 1.0}}), InputError);
 }
