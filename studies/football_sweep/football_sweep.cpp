@@ -20,6 +20,7 @@
 // at t_fork < 1.06 s; each child changes only its pallet schedule and runs on. The children are
 // exact continuations (the whole process state is copied), so every case is bit-identical to a run
 // from t = 0. CTest stops each case at the end of the judged window; --full runs to 3 s.
+#include <csignal>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -56,6 +57,11 @@ using units::mm;
 using nlohmann::json;
 
 namespace {
+
+// SIGUSR1 ends every process's run at its next sample, as if its end time had come: the records
+// written so far are kept (`kill -USR1 <pids>` on a run that will not finish in time).
+volatile std::sig_atomic_t g_stop = 0;
+extern "C" void request_stop_signal(int) { g_stop = 1; }
 
 const std::vector<std::string> kFingers = {"A", "B", "C", "D", "E"};
 using football::Case;
@@ -235,6 +241,7 @@ Record run(const Variant& v, RunOptions o) {
     std::unique_ptr<ExplicitSolver> solver;
     auto observe = [&](const ExplicitSolver& s) {
         const double tau = s.time(), t = tau + o.start;  // model and physical time
+        if (g_stop) s.request_stop();
         while (!pending.empty() && t >= pending.front().t_switch - 2.0 * kSample) {
             const Case next = pending.front();
             pending.erase(pending.begin());
@@ -449,6 +456,7 @@ int main(int argc, char** argv) {
     return check::run_study("football_sweep", argc, argv, [](check::Study& study) {
         const auto& out = study.results_dir();
         par::set_threads(1);  // one thread per process: the cases run as forked processes
+        std::signal(SIGUSR1, request_stop_signal);
         // Development switches: FOOTBALL_END=<s> caps the simulated time, FOOTBALL_ONLY=<case> runs one
         // case (no checks).
         RunOptions o;
