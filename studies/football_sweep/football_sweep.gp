@@ -63,10 +63,10 @@ if (ext eq 'png') {
   set terminal pngcairo size 1500,820 enhanced font 'sans,10' background rgb 'white'
   snap(c, k) = results.'/snap-case-'.c.'-'.k.'.dat'
   unset grid
-  set view 58, 32, 1.1
+  set view 60, 30, 1.9
   set view equal xyz
   set xyplane 0
-  set xrange [-250:450]; set yrange [-150:250]; set zrange [-30:160]
+  set xrange [-200:420]; set yrange [-130:230]; set zrange [-30:160]
   unset xtics; unset ytics; unset ztics; unset border
   set pm3d depthorder border lc rgb '#404040' lw 0.3
   set style fill solid 0.9
