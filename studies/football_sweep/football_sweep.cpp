@@ -91,8 +91,9 @@ public:
         for (const auto& c : ball ? hm_.contact("fingers on football").contacts() : std::vector<contact::ContactPoint>{}) {
             const auto& fc = hm_.contact("fingers on football");
             const Vec3 f = c.normal_force * c.normal + c.tangential_force;
-            if (c.pass == 0) on[hm_.finger_of_node(c.node)] += f;
-            else on[hm_.finger_of_block(fc.slave_surface().segments[c.segment].block)] -= f;
+            // (try_emplace with zero: a default-constructed Eigen vector is uninitialised)
+            if (c.pass == 0) on.try_emplace(hm_.finger_of_node(c.node), Vec3::Zero()).first->second += f;
+            else on.try_emplace(hm_.finger_of_block(fc.slave_surface().segments[c.segment].block), Vec3::Zero()).first->second -= f;
         }
         for (const auto& [finger, f] : on) {
             auto& r = per_finger[finger];
