@@ -6,7 +6,9 @@
 #   make <study>  run one study and draw its figures (cfl_tables, portal_frame_modes, ...)
 #   make report   rebuild figures/REPORT.md and figures/REPORT.html from build/results
 #   make bench    the performance benchmarks
-#   make clean    remove build/
+#   make fuzz     libFuzzer targets for the Gmsh reader and the case-file readers (build-fuzz/, clang)
+#   make sanitize unit tests and the short studies under ASan + UBSan (build-sanitize/)
+#   make clean    remove build/ (and build-fuzz/, build-sanitize/)
 BUILD   ?= build
 JOBS    ?= $(shell nproc 2>/dev/null || echo 2)
 CMAKE_FLAGS ?= -DCMAKE_BUILD_TYPE=Release
@@ -16,17 +18,23 @@ CMAKE_FLAGS ?= -DCMAKE_BUILD_TYPE=Release
 # environment to override.
 export OMP_WAIT_POLICY ?= passive
 
-# Every Debian package the project needs, build tools included.
+# Every Debian package the project needs, build tools included (clang and its runtime for `make fuzz`;
+# chromium: headless screenshots of figures/REPORT.html, to look at the report as a reader sees it).
 DEB_PACKAGES := cmake make g++ pkg-config \
   libeigen3-dev libspectra-dev libgsl-dev libhdf5-dev hdf5-tools \
   nlohmann-json3-dev libtomlplusplus-dev libfmt-dev \
   libgtest-dev libgmock-dev libbenchmark-dev \
   gnuplot-nox gmsh libgmsh-dev calculix-ccx \
-  libsuitesparse-dev libopenblas0-serial
+  libsuitesparse-dev libopenblas0-serial \
+  libopenmpi-dev openmpi-bin \
+  clang libclang-rt-14-dev chromium
+
+empty :=
+space := $(empty) $(empty)
 
 STUDIES := $(sort $(notdir $(patsubst %/,%,$(dir $(wildcard studies/*/CMakeLists.txt)))))
 
-.PHONY: all test deps build configure report bench clean studies $(STUDIES)
+.PHONY: all test deps build configure report bench fuzz sanitize clean studies $(STUDIES)
 
 # Runs every study even when one fails, writes the report, then reports failure if any study failed.
 all: deps build
@@ -50,10 +58,15 @@ deps:
 	  echo "deps: missing Debian packages; run:"; echo "  sudo apt-get install -y$$missing"; exit 1; \
 	fi
 
-$(BUILD)/CMakeCache.txt:
+# Configure once; the stamp is written only when CMake succeeded, so a configure that failed (say,
+# `make <study>` before the packages were installed) is simply run again by the next make instead of
+# leaving a half-made build folder that every later make trips over. CMake retries whatever it did
+# not find. tests/makefile/configure_recovers.sh checks this in a scratch copy.
+$(BUILD)/.configured:
 	cmake -S . -B $(BUILD) $(CMAKE_FLAGS)
+	@touch $@
 
-configure: $(BUILD)/CMakeCache.txt
+configure: $(BUILD)/.configured
 
 build: configure
 	cmake --build $(BUILD) -j $(JOBS)
@@ -70,5 +83,42 @@ report: build
 bench: build
 	@set -e; for b in $(BUILD)/bench/*; do [ -x "$$b" ] && echo "== $$b" && "$$b"; done; true
 
+# Sanitizer runtime settings shared by `make fuzz` and `make sanitize`: stop at the first report;
+# libgmsh's own leaks are suppressed by library (tests/sanitize/lsan.supp), ours are not.
+SANITIZER_ENV := ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:detect_stack_use_after_return=0 \
+  LSAN_OPTIONS=suppressions=$(CURDIR)/tests/sanitize/lsan.supp:print_suppressions=0 \
+  UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
+
+# Fuzzing: clang's libFuzzer with ASan and UBSan in $(FUZZ_BUILD); each target runs FUZZ_RUNS
+# executions starting from its seed corpus tests/fuzz/corpus/<target> (kept in the repository; new
+# inputs it finds go to $(FUZZ_BUILD)/corpus/<target>). Crashes are written to $(FUZZ_BUILD)/.
+FUZZ_BUILD   ?= build-fuzz
+FUZZ_RUNS    ?= 100000
+FUZZ_TARGETS := gmsh modal_case topopt_case
+fuzz: deps
+	@[ -f $(FUZZ_BUILD)/.configured ] || { cmake -S . -B $(FUZZ_BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+	  -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ -DFEM_FUZZ=ON && touch $(FUZZ_BUILD)/.configured; }
+	cmake --build $(FUZZ_BUILD) -j $(JOBS) --target $(addprefix fuzz_,$(FUZZ_TARGETS))
+	@set -e; for t in $(FUZZ_TARGETS); do \
+	  mkdir -p $(FUZZ_BUILD)/corpus/$$t; echo "== fuzz_$$t: $(FUZZ_RUNS) executions"; \
+	  $(SANITIZER_ENV) $(FUZZ_BUILD)/tests/fuzz/fuzz_$$t -runs=$(FUZZ_RUNS) -timeout=20 -rss_limit_mb=4096 \
+	    -max_len=8192 -print_final_stats=1 -artifact_prefix=$(FUZZ_BUILD)/crash-$$t- \
+	    $(FUZZ_BUILD)/corpus/$$t tests/fuzz/corpus/$$t > $(FUZZ_BUILD)/fuzz_$$t.log 2>&1 \
+	    || { tail -40 $(FUZZ_BUILD)/fuzz_$$t.log; exit 1; }; \
+	  grep -E "^Done|stat::number_of_executed_units|stat::peak_rss_mb" $(FUZZ_BUILD)/fuzz_$$t.log; \
+	done
+
+# Sanitizers: everything built with ASan + UBSan in $(SANITIZE_BUILD); runs the unit tests and the
+# short studies (the long ones, minutes each in a normal build, take 3-10x longer instrumented).
+SANITIZE_BUILD   ?= build-sanitize
+SANITIZE_STUDIES ?= cfl_tables portal_frame_modes finger_twist topology_cases
+sanitize: deps
+	@[ -f $(SANITIZE_BUILD)/.configured ] || { cmake -S . -B $(SANITIZE_BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+	  -DFEM_SANITIZE=ON && touch $(SANITIZE_BUILD)/.configured; }
+	cmake --build $(SANITIZE_BUILD) -j $(JOBS)
+	cd $(SANITIZE_BUILD) && $(SANITIZER_ENV) ctest --output-on-failure -j $(JOBS) -L unit
+	cd $(SANITIZE_BUILD) && $(SANITIZER_ENV) ctest --output-on-failure -j $(JOBS) \
+	  -R '^($(subst $(space),|,$(strip $(SANITIZE_STUDIES))))$$'
+
 clean:
-	rm -rf $(BUILD)
+	rm -rf $(BUILD) $(FUZZ_BUILD) $(SANITIZE_BUILD)

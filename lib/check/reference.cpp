@@ -1,5 +1,6 @@
 #include "check/reference.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <set>
 #include <sstream>
@@ -12,6 +13,39 @@ namespace fem::check {
 bool Tolerance::allows(double reproduced, double reference) const {
     if (!std::isfinite(reproduced)) return false;
     return std::abs(reproduced - reference) <= abs + rel * std::abs(reference);
+}
+
+std::string_view kind_name(Kind kind) {
+    switch (kind) {
+        case Kind::Reproduction: return "reproduction";
+        case Kind::Consistency: return "consistency";
+        case Kind::Verification: return "verification";
+        case Kind::Trend: return "trend";
+        case Kind::Shown: return "shown";
+    }
+    return "?";
+}
+
+const std::vector<Kind>& all_kinds() {
+    static const std::vector<Kind> kinds = {Kind::Reproduction, Kind::Trend, Kind::Consistency, Kind::Verification,
+                                            Kind::Shown};
+    return kinds;
+}
+
+std::optional<Kind> parse_kind(std::string_view name) {
+    for (Kind k : all_kinds())
+        if (kind_name(k) == name) return k;
+    return std::nullopt;
+}
+
+std::string ReferenceEntry::member_label(std::size_t k) const {
+    return k < labels.size() ? labels[k] : std::to_string(k + 1);
+}
+
+bool ReferenceEntry::member_is_known_miss(const std::string& label) const {
+    if (!is_known_miss()) return false;
+    if (known_miss_labels.empty()) return true;
+    return std::find(known_miss_labels.begin(), known_miss_labels.end(), label) != known_miss_labels.end();
 }
 
 const ReferenceEntry& ReferenceFile::entry(std::string_view id) const {
@@ -52,7 +86,50 @@ ReferenceEntry parse_entry(const toml::table& t, const std::filesystem::path& pa
     e.reason = optional_string(t, "reason");
     e.note = optional_string(t, "note");
     e.discrepancy = optional_string(t, "discrepancy");
-    e.judged = t["judged"].value<bool>().value_or(true);
+
+    // kind: required. judged = false survives only as a redundant mark of kind "shown".
+    const auto kind_text = t["kind"].value<std::string>();
+    if (!kind_text)
+        fail(path, t.source(), "check '" + e.id +
+                                   "' lacks 'kind' (reproduction, consistency, verification, trend or shown)");
+    const auto kind = parse_kind(*kind_text);
+    if (!kind)
+        fail(path, t.source(), "check '" + e.id + "': kind '" + *kind_text +
+                                   "' is not one of reproduction, consistency, verification, trend, shown");
+    e.kind = *kind;
+    if (const auto judged = t["judged"].value<bool>()) {
+        if (!*judged && e.kind != Kind::Shown)
+            fail(path, t.source(), "check '" + e.id + "': judged = false is only for kind \"shown\" (nothing to judge "
+                                   "against); a miss is a known_miss with its reason");
+        if (*judged && e.kind == Kind::Shown)
+            fail(path, t.source(), "check '" + e.id + "': kind \"shown\" is never judged");
+    }
+    e.known_miss = optional_string(t, "known_miss");
+    if (e.is_known_miss() && e.kind == Kind::Shown)
+        fail(path, t.source(), "check '" + e.id + "': a known_miss is judged; kind \"shown\" is not");
+    if (t.contains("known_miss") && e.known_miss.empty())
+        fail(path, t.source(), "check '" + e.id + "': known_miss must say why we miss (a non-empty string)");
+    if (const toml::array* h = t["history"].as_array()) {
+        for (const auto& item : *h) {
+            const toml::table* ht = item.as_table();
+            if (!ht) fail(path, t.source(), "check '" + e.id + "': history holds a non-table");
+            HistoryEntry he;
+            auto field = [&](const char* key) {
+                auto v = (*ht)[key].value<std::string>();
+                if (!v || v->empty())
+                    fail(path, ht->source(), "check '" + e.id + "': a history entry lacks '" + key +
+                                                 "' (date, change, was and why are required)");
+                return *v;
+            };
+            he.date = field("date");
+            he.change = field("change");
+            he.was = field("was");
+            he.why = field("why");
+            e.history.push_back(std::move(he));
+        }
+    } else if (t.contains("history")) {
+        fail(path, t.source(), "check '" + e.id + "': history must be an array of { date, change, was, why }");
+    }
 
     const toml::node_view thesis = t["thesis"];
     if (auto s = thesis.value<std::string>()) {
@@ -92,8 +169,23 @@ ReferenceEntry parse_entry(const toml::table& t, const std::filesystem::path& pa
     }
     if (e.is_trend()) {
         if (e.tolerance) fail(path, t.source(), "check '" + e.id + "': a trend check has no tolerance");
-    } else if (e.judged && !e.tolerance) {
-        fail(path, t.source(), "check '" + e.id + "': a judged numeric check needs a tolerance (or judged = false)");
+    } else if (e.judged() && !e.tolerance) {
+        fail(path, t.source(), "check '" + e.id + "': a judged numeric check needs a tolerance (kind \"shown\" only when "
+                               "there is nothing to judge against)");
+    } else if (!e.judged() && e.tolerance) {
+        fail(path, t.source(), "check '" + e.id + "': kind \"shown\" is not judged, so it takes no tolerance");
+    }
+    if (const toml::array* members = t["known_miss_labels"].as_array()) {
+        if (!e.is_series() || !e.is_known_miss())
+            fail(path, t.source(), "check '" + e.id + "': known_miss_labels is for a series entry with a known_miss");
+        const auto n = std::get<std::vector<double>>(e.thesis).size();
+        for (const auto& m : *members) {
+            const std::string label = m.value<std::string>().value_or("");
+            bool found = false;
+            for (std::size_t k = 0; k < n; ++k) found = found || e.member_label(k) == label;
+            if (!found) fail(path, t.source(), "check '" + e.id + "': known_miss_labels names '" + label + "', not a member");
+            e.known_miss_labels.push_back(label);
+        }
     }
     return e;
 }

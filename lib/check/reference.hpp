@@ -1,11 +1,13 @@
 #pragma once
-// The thesis's values for one study, as written in reference/<study>.toml before any result is
-// seen: for every check its source (table, figure, equation), quantity, unit, basis, tolerance and
-// the reason for that tolerance. See reference/README.md for the file format.
+// The thesis's values for one study, as written in reference/<study>.toml: for every check its source
+// (table, figure, equation), quantity, unit, basis, kind, tolerance and the reason for that tolerance,
+// whether it is a known miss, and how the entry changed after its first run. See reference/README.md
+// for the file format and DESIGN.md ("Tolerance policy") for the rules.
 #include <filesystem>
 #include <map>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <variant>
 #include <vector>
 
@@ -16,6 +18,31 @@ struct Tolerance {
     double rel = 0.0;
     double abs = 0.0;
     bool allows(double reproduced, double reference) const;
+};
+
+/// What a check tests (issue 13; DESIGN.md "Outputs"). The report counts each kind on its own and
+/// leads with reproduction.
+enum class Kind {
+    Reproduction,  // our model's output against a result the thesis printed
+    Consistency,   // the thesis's own numbers and formulas re-derived (refits, closed forms, discrepancies)
+    Verification,  // a method recovers a known input, or a property that holds by construction
+    Trend,         // a conclusion the thesis draws, tested on our results
+    Shown,         // nothing to judge against (experiment curves not printed, diagnostics): never judged
+};
+/// "reproduction", "consistency", ... as written in reference files and check records.
+std::string_view kind_name(Kind kind);
+/// The kind named `name`; std::nullopt for an unknown name.
+std::optional<Kind> parse_kind(std::string_view name);
+/// Every kind, reproduction first (the report's order).
+const std::vector<Kind>& all_kinds();
+
+/// One change of an entry after its first run (tolerance, measurand, kind, known-miss status):
+/// the earlier form and the reason, kept in the entry and shown by the report.
+struct HistoryEntry {
+    std::string date;    // "2026-12-01"
+    std::string change;  // what changed
+    std::string was;     // the earlier form
+    std::string why;     // the reason
 };
 
 /// One [[check]] entry of a reference file.
@@ -35,8 +62,22 @@ struct ReferenceEntry {
     // instead of the printed one), and the explanation.
     std::optional<double> follows;
     std::string discrepancy;
-    bool judged = true;  // false: shown beside ours (e.g. an experiment the model cannot reach)
+    Kind kind = Kind::Reproduction;  // required in the file
+    // A known miss: a reproduction (or trend) we do not reach yet, with why, what was tried and the
+    // hypothesis. Still judged with its tolerance; the study accepts it while it misses and fails
+    // when it starts to pass, so that the entry gets updated.
+    std::string known_miss;
+    // For a series: the members (labels) that are known misses; empty means every member.
+    std::vector<std::string> known_miss_labels;
+    std::vector<HistoryEntry> history;
 
+    /// Judged against the thesis: every kind but Shown.
+    bool judged() const { return kind != Kind::Shown; }
+    bool is_known_miss() const { return !known_miss.empty(); }
+    /// Whether the series member `label` (or the single value, label empty) is a known miss.
+    bool member_is_known_miss(const std::string& label) const;
+    /// The label of series member k (the entry's labels, or "1", "2", ...).
+    std::string member_label(std::size_t k) const;
     bool is_trend() const { return std::holds_alternative<std::string>(thesis); }
     bool is_series() const { return std::holds_alternative<std::vector<double>>(thesis); }
 };

@@ -16,6 +16,7 @@
 #include <filesystem>
 #include <deque>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <span>
 #include <string>
@@ -24,24 +25,48 @@
 #include <nlohmann/json.hpp>
 
 #include "check/reference.hpp"
+#include "check/run_health.hpp"
+
+namespace fem::io {
+class RunFolder;
+}
 
 namespace fem::check {
 
 /// One line of checks.json.
 struct CheckRecord {
     std::string id, source, quantity, unit, basis;
+    Kind kind = Kind::Reproduction;
     nlohmann::json thesis;      // printed value (number or statement)
     nlohmann::json reproduced;  // ours
     std::optional<double> reference;  // the value compared against when it is not the printed one
     std::optional<Tolerance> tolerance;
-    std::optional<bool> passed;  // empty for a value only shown (judged = false)
+    std::optional<bool> passed;  // within tolerance (trend: holds); empty for kind "shown"
     std::string note, discrepancy, reason;
+    std::string known_miss;      // why this is expected to miss (empty: it is expected to pass)
+    std::vector<HistoryEntry> history;
 
     nlohmann::json to_json() const;
+    /// Throws InputError for a record without a valid kind (written before kinds existed: re-run).
     static CheckRecord from_json(const nlohmann::json& j);
     /// Relative deviation of ours from the printed thesis value, when both are numbers.
     std::optional<double> deviation() const;
 };
+
+/// The verdict of a record: the one place that classifies checks (studies' exit status, the report's
+/// counts, tables and sections all use it).
+enum class Verdict {
+    Pass,            // within tolerance / the trend holds
+    Fail,            // misses, and is not a known miss
+    KnownMiss,       // misses, as its entry's known_miss says: "not reproduced"
+    UnexpectedPass,  // a known miss that now passes: fails the study until the entry is updated
+    Shown,           // kind "shown": nothing to judge against
+};
+Verdict verdict(const CheckRecord& r);
+/// "pass", "FAIL", "not reproduced", "FAIL: known miss passes", "shown".
+std::string_view verdict_label(Verdict v);
+/// Whether the verdict fails the study (Fail, UnexpectedPass).
+bool fails_study(Verdict v);
 
 /// The run summary of one solver run, listed in the report (wall time, steps, element-cycles/s).
 struct RunRecord {
@@ -54,9 +79,12 @@ public:
     /// Parses the command line (--results DIR, --figures DIR, --reference FILE, --help) and loads
     /// reference/<name>.toml.
     Study(std::string name, int argc, char** argv);
+    ~Study();
 
     const std::string& name() const { return name_; }
-    /// build/results/<study>/, created on construction.
+    /// Where the study writes its results: the staging folder of build/results/<study>/
+    /// (io::RunFolder: checked and locked on construction; finish() moves the files into place, so
+    /// the folder always holds one complete run's set).
     const std::filesystem::path& results_dir() const { return results_dir_; }
     /// Where figures are drawn (figures/ for `make`, build/figures for CTest); empty: none.
     const std::filesystem::path& figures_dir() const { return figures_dir_; }
@@ -64,6 +92,8 @@ public:
     /// --full: also run the thesis-size runs CTest leaves out (`make all` passes it). They may only
     /// add shown results: checks.json must be the same with and without it.
     bool full() const { return full_; }
+    /// --jobs N: independent cases run at once (check/cases.hpp); 0 when not given.
+    int jobs() const { return jobs_; }
 
     /// Numeric check of `reproduced` against the entry `id`.
     const CheckRecord& check(std::string_view id, double reproduced, std::string note = {});
@@ -88,7 +118,8 @@ public:
     ///   set output figures.'/fig-2-6.'.ext
     void plot();
 
-    /// Writes checks.json and runs.json, prints the verdicts; returns 0 when every check passed.
+    /// Writes checks.json and runs.json, puts the run's files in place (replacing the previous run's
+    /// set), prints the verdicts; returns 0 when every check passed.
     int finish();
 
     const std::deque<CheckRecord>& records() const { return records_; }
@@ -100,10 +131,14 @@ private:
     std::string name_;
     std::filesystem::path results_dir_, figures_dir_, source_dir_;
     bool full_ = false;
+    int jobs_ = 0;
+    bool scratch_ = false;  // an MPI rank other than 0: results_dir_ is a scratch folder, removed at finish()
     ReferenceFile reference_;
     std::deque<CheckRecord> records_;  // deque: references handed out stay valid
     std::vector<std::string> checked_ids_;
     std::vector<RunRecord> runs_;
+    std::unique_ptr<io::RunFolder> output_;
+    std::vector<HealthExemption> health_exemptions_;  // reference file's [[health_exemption]] (run_health.hpp)
 };
 
 /// main() of a study: builds the Study, runs body, finishes; InputError/SolverError become a

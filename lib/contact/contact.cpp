@@ -1,6 +1,7 @@
 #include "contact/contact.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <set>
@@ -8,6 +9,7 @@
 #include <fmt/format.h>
 
 #include "core/error.hpp"
+#include "io/hdf5.hpp"
 
 namespace fem::contact {
 
@@ -24,6 +26,8 @@ struct ContactInterface::Pass {
     struct History {
         Vec3 force = Vec3::Zero();      // elastic tangential force (friction spring)
         int segment = -1;               // segment of the last cycle (-1: not in contact)
+        int side = 0;                   // two-sided (shell) segment: the side the node touches (+-1)
+        Vec3 normal = Vec3::Zero();     // the contact normal of the last cycle (side applied)
     };
     std::vector<History> history;       // per slave node
 
@@ -31,11 +35,14 @@ struct ContactInterface::Pass {
         : slave(&s), master(&m), rigid(is_rigid),
           list(o.margin > 0 ? o.margin : 0.25 * m.mean_segment_size(), o.max_rebuild_interval) {
         std::set<int> nodes;
+        double slave_offset = 0.0;
+        for (double t : s.node_offset) slave_offset = std::max(slave_offset, t);
         for (const auto& seg : m.segments) {
             const double h = std::sqrt(seg.area);
             size.push_back(h);
-            // A node in contact lies within depth behind the face and edge_tolerance x h beside it.
-            depth.push_back(std::isfinite(seg.depth) ? seg.depth : h);
+            // A node in contact lies within depth behind the face (its offset contact surface, shell
+            // thickness: both offsets added) and edge_tolerance x h beside it.
+            depth.push_back((std::isfinite(seg.depth) ? seg.depth : h) + seg.offset + slave_offset);
             lateral.push_back(o.edge_tolerance * h);
             if (h > 0) turn_factor = std::max(turn_factor, 1.0 + 2.0 * depth.back() / h);
             for (int i = 0; i < seg.count; ++i) nodes.insert(seg.n[i]);
@@ -52,28 +59,23 @@ ContactInterface::ContactInterface(std::string name, ContactSurface slave, Conta
     validate_options();
     if (slave_->nodes.empty() || master_->segments.empty())
         throw InputError(fmt::format("contact '{}': the slave side has no nodes or the master side no faces", name_));
-    if (slave_->rigid || master_->rigid)
-        throw InputError(fmt::format("contact '{}': use the RigidSurface constructor for a rigid master", name_));
-    passes_.push_back(std::make_unique<Pass>(*slave_, *master_, false, opt_));
+    if (slave_->rigid)
+        throw InputError(fmt::format("contact '{}': the slave side '{}' is rigid; make the rigid part the master", name_,
+                                     slave_->name));
+    if (slave_->node_size.size() != slave_->nodes.size())
+        throw InputError(fmt::format("contact '{}': the slave surface '{}' has no node sizes (build it with "
+                                     "ContactSurface::from_part)",
+                                     name_, slave_->name));
+    passes_.push_back(std::make_unique<Pass>(*slave_, *master_, master_->rigid, opt_));
     if (opt_.two_way) {
+        if (master_->rigid)
+            throw InputError(fmt::format("contact '{}': two-way contact needs a deformable master (the rigid part "
+                                         "'{}' has no slave nodes)",
+                                         name_, master_->name));
         if (master_->nodes.empty() || slave_->segments.empty())
             throw InputError(fmt::format("contact '{}': two-way contact needs faces and nodes on both sides", name_));
         passes_.push_back(std::make_unique<Pass>(*master_, *slave_, false, opt_));
     }
-}
-
-ContactInterface::ContactInterface(std::string name, ContactSurface slave, RigidSurface master, ContactOptions o)
-    : name_(std::move(name)), opt_(o), slave_(std::make_unique<ContactSurface>(std::move(slave))),
-      rigid_(std::make_unique<RigidSurface>(std::move(master))) {
-    validate_options();
-    if (slave_->nodes.empty() || rigid_->surface.segments.empty())
-        throw InputError(fmt::format("contact '{}': the slave side has no nodes or the rigid master no faces", name_));
-    if (opt_.two_way)
-        throw InputError(fmt::format("contact '{}': two-way contact needs a deformable master (a rigid body's points "
-                                     "carry no mass)",
-                                     name_));
-    rigid_->surface.rigid = true;
-    passes_.push_back(std::make_unique<Pass>(*slave_, rigid_->surface, true, opt_));
 }
 
 void ContactInterface::validate_options() const {
@@ -99,7 +101,7 @@ void ContactInterface::check(std::span<const Vec3> x) const {
         return -1;
     };
     int n = bad(*slave_);
-    if (n < 0 && master_) n = bad(*master_);
+    if (n < 0) n = bad(*master_);
     if (n >= 0)
         throw InputError(fmt::format("contact '{}': node {} is out of range (the model has {} nodes)", name_, n, x.size()));
 }
@@ -107,7 +109,6 @@ void ContactInterface::check(std::span<const Vec3> x) const {
 void ContactInterface::evaluate(std::span<const Vec3> x, std::span<const Vec3> v, double t, double dt,
                                 std::span<Vec3> force) {
     if (passes_[0]->list.cycles() == 0) check(x);
-    if (rigid_) rigid_->state(t, rigid_x_, rigid_v_);
     stored_ = 0.0;
     f_master_.setZero();
     m_master_.setZero();
@@ -121,10 +122,10 @@ void ContactInterface::evaluate(std::span<const Vec3> x, std::span<const Vec3> v
         Pass& P = *passes_[p];
         const auto& snodes = P.slave->nodes;
         const auto& segs = P.master->segments;
-        std::span<const Vec3> xm = P.rigid ? std::span<const Vec3>(rigid_x_) : x;
-        std::span<const Vec3> vm = P.rigid ? std::span<const Vec3>(rigid_v_) : vs;
+        std::span<const Vec3> xm = x, vm = vs;
         for (std::size_t i = 0; i < snodes.size(); ++i) P.slave_x[i] = x[snodes[i]];
         const bool self = !P.rigid;  // a node never contacts a face it belongs to
+        const auto search0 = std::chrono::steady_clock::now();
         P.list.update(P.slave_x, xm, segs, P.depth, P.lateral, P.master_nodes, P.turn_factor, [&](int i, int s) {
             if (!self) return false;
             const auto& seg = segs[s];
@@ -132,6 +133,7 @@ void ContactInterface::evaluate(std::span<const Vec3> x, std::span<const Vec3> v
                 if (seg.n[k] == snodes[i]) return true;
             return false;
         });
+        search_s_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - search0).count();
 
         for (std::size_t i = 0; i < snodes.size(); ++i) {
             const int node = snodes[i];
@@ -144,14 +146,27 @@ void ContactInterface::evaluate(std::span<const Vec3> x, std::span<const Vec3> v
             // depth) is outside the master body, however deep it lies behind another face whose
             // edge tolerance it falls in (a finger beside a thick object, level with its faces).
             auto& hist = P.history[i];
-            int best = -1;
+            int best = -1, best_side = 0;
             Projection bp;
             double nearest_front = std::numeric_limits<double>::infinity();
+            const double node_offset = P.slave->node_offset.empty() ? 0.0 : P.slave->node_offset[i];
             for (int s : P.list.candidates(static_cast<int>(i))) {
                 const auto& seg = segs[s];
-                const Projection pr = seg.count == 4
-                                          ? project_quad(xs, xm[seg.n[0]], xm[seg.n[1]], xm[seg.n[2]], xm[seg.n[3]])
-                                          : project_triangle(xs, xm[seg.n[0]], xm[seg.n[1]], xm[seg.n[2]]);
+                Projection pr = seg.count == 4
+                                    ? project_quad(xs, xm[seg.n[0]], xm[seg.n[1]], xm[seg.n[2]], xm[seg.n[3]])
+                                    : project_triangle(xs, xm[seg.n[0]], xm[seg.n[1]], xm[seg.n[2]]);
+                // Shell thickness (surface.hpp): a two-sided segment is touched from the side the node
+                // is on (kept while the contact lasts); the gap is measured from the offset surfaces.
+                int side = 0;
+                if (seg.two_sided) {
+                    if (hist.segment >= 0 && hist.side != 0)  // in contact: stay on the same side, also
+                        side = s == hist.segment ? hist.side : (pr.normal.dot(hist.normal) >= 0.0 ? 1 : -1);  // sliding on
+                    else
+                        side = pr.gap >= 0.0 ? 1 : -1;
+                    pr.gap *= side;
+                    pr.normal *= side;
+                }
+                pr.gap -= seg.offset + node_offset;
                 const double tiny = 1e-9 * P.size[s];
                 if (pr.gap > tiny && pr.tangential_offset <= tiny) nearest_front = std::min(nearest_front, pr.gap);
                 if (!(pr.gap < -tiny) || -pr.gap > P.depth[s] || pr.tangential_offset > opt_.edge_tolerance * P.size[s])
@@ -159,6 +174,7 @@ void ContactInterface::evaluate(std::span<const Vec3> x, std::span<const Vec3> v
                 const bool kept = s == hist.segment;
                 if (best < 0 || kept || (best != hist.segment && pr.distance < bp.distance)) {
                     best = s;
+                    best_side = side;
                     bp = pr;
                 }
             }
@@ -173,6 +189,8 @@ void ContactInterface::evaluate(std::span<const Vec3> x, std::span<const Vec3> v
             Vec3 F = fn * bp.normal;        // on the slave node
             ContactPoint cp{node, best, static_cast<int>(p), xs, bp.point, bp.normal, bp.gap, fn, Vec3::Zero(), false};
             stored_ += 0.5 * k * bp.gap * bp.gap;
+            max_penetration_ = std::max(max_penetration_, -bp.gap);
+            max_penetration_fraction_ = std::max(max_penetration_fraction_, -bp.gap / P.slave->node_size[i]);
             // Velocity of the master point under the node (shape-function interpolation).
             Vec3 vmp = Vec3::Zero();
             for (int a = 0; a < seg.count; ++a) vmp += bp.shape[a] * vm[seg.n[a]];
@@ -190,6 +208,8 @@ void ContactInterface::evaluate(std::span<const Vec3> x, std::span<const Vec3> v
                 cp.slipping = fr.slipping;
             }
             hist.segment = best;
+            hist.side = best_side;
+            hist.normal = bp.normal;
             force[node] += F;
             if (P.rigid) {
                 rigid_power += F.dot(vmp);
@@ -204,9 +224,82 @@ void ContactInterface::evaluate(std::span<const Vec3> x, std::span<const Vec3> v
             points_.push_back(cp);
         }
     }
-    if (rigid_) {
+    if (master_->rigid) {
         rigid_work_ += 0.5 * (rigid_power_ + rigid_power) * dt;  // trapezoidal rule
         rigid_power_ = rigid_power;
+    }
+}
+
+void ContactInterface::save_state(io::H5Writer& w, const std::string& prefix) const {
+    w.write(prefix + "scalars", std::vector<double>{stored_, dissipated_, rigid_work_, rigid_power_, max_penetration_,
+                                                    max_penetration_fraction_});
+    Eigen::MatrixXd fm(2, 3);
+    fm.row(0) = f_master_.transpose();
+    fm.row(1) = m_master_.transpose();
+    w.write(prefix + "master_resultant", fm);
+    for (std::size_t p = 0; p < passes_.size(); ++p) {
+        const Pass& P = *passes_[p];
+        const std::string pp = prefix + "pass" + std::to_string(p) + "/";
+        P.list.save_state(w, pp + "search/");
+        Eigen::MatrixXd force(P.history.size(), 3);
+        std::vector<long long> segment(P.history.size());
+        for (std::size_t i = 0; i < P.history.size(); ++i) {
+            force.row(i) = P.history[i].force.transpose();
+            segment[i] = P.history[i].segment;
+        }
+        w.write(pp + "friction_force", force);
+        w.write_ints(pp + "segment", segment);
+    }
+    // The last evaluation's contact points (outputs: an observer reads them before the next cycle).
+    Eigen::MatrixXd pts(points_.size(), 17);
+    for (std::size_t i = 0; i < points_.size(); ++i) {
+        const ContactPoint& c = points_[i];
+        pts.row(i) << c.node, c.segment, c.pass, c.position.transpose(), c.point.transpose(), c.normal.transpose(), c.gap,
+            c.normal_force, c.tangential_force.transpose(), c.slipping ? 1.0 : 0.0;
+    }
+    w.write(prefix + "points", pts);
+}
+
+void ContactInterface::restore_state(const io::H5Reader& r, const std::string& prefix) {
+    const auto bad = [&](const std::string& what) {
+        return InputError(fmt::format("restart file '{}': contact '{}': {}", r.path().string(), name_, what));
+    };
+    const auto sc = r.read(prefix + "scalars");
+    if (sc.size() != 6) throw bad("bad " + prefix + "scalars");
+    stored_ = sc[0], dissipated_ = sc[1], rigid_work_ = sc[2], rigid_power_ = sc[3];
+    max_penetration_ = sc[4], max_penetration_fraction_ = sc[5];
+    const Eigen::MatrixXd fm = r.read_matrix(prefix + "master_resultant");
+    f_master_ = fm.row(0).transpose();
+    m_master_ = fm.row(1).transpose();
+    for (std::size_t p = 0; p < passes_.size(); ++p) {
+        Pass& P = *passes_[p];
+        const std::string pp = prefix + "pass" + std::to_string(p) + "/";
+        if (!r.has(pp + "segment")) throw bad(fmt::format("the file has no contact pass {} (one-way vs two-way?)", p));
+        const Eigen::MatrixXd force = r.read_matrix(pp + "friction_force");
+        const auto segment = r.read_ints(pp + "segment");
+        if (segment.size() != P.history.size())
+            throw bad(fmt::format("pass {} has {} slave nodes in the file, {} here", p, segment.size(), P.history.size()));
+        for (std::size_t i = 0; i < P.history.size(); ++i) {
+            P.history[i].force = force.row(i).transpose();
+            P.history[i].segment = static_cast<int>(segment[i]);
+            if (P.history[i].segment >= static_cast<int>(P.master->segments.size()))
+                throw bad(fmt::format("pass {}: segment {} of the file is not a master segment here", p, segment[i]));
+        }
+        P.list.restore_state(r, pp + "search/");
+    }
+    if (r.has(prefix + "pass" + std::to_string(passes_.size()) + "/segment"))
+        throw bad("the file has more contact passes than this interface (two-way vs one-way?)");
+    const Eigen::MatrixXd pts = r.read_matrix(prefix + "points");
+    points_.clear();
+    for (Eigen::Index i = 0; i < pts.rows(); ++i) {
+        const auto row = pts.row(i);
+        ContactPoint c;
+        c.node = static_cast<int>(row(0)), c.segment = static_cast<int>(row(1)), c.pass = static_cast<int>(row(2));
+        c.position = row.segment<3>(3).transpose(), c.point = row.segment<3>(6).transpose();
+        c.normal = row.segment<3>(9).transpose(), c.gap = row(12), c.normal_force = row(13);
+        c.tangential_force = row.segment<3>(14).transpose();
+        c.slipping = row(16) != 0.0;
+        points_.push_back(c);
     }
 }
 

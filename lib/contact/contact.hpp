@@ -19,8 +19,9 @@
 // difference step of 0.9 x Table 2-1 unstable (test TwoEqualBars...), as LS-DYNA warns. The friction force follows friction.hpp. The opposite force goes to the master
 // nodes weighted by the segment shape functions at the contact point, so the pair's forces sum to
 // zero (momentum conserved exactly) and their moments about any point cancel up to the gap.
-// A rigid master receives no nodal forces: the reaction is summed into force_on_master() and
-// moment_on_master().
+// A rigid master (ContactSurface::rigid_part: the surface of a rigid part of the explicit model, whose
+// nodes the solver moves by the part's RigidMotion) receives no nodal forces: the reaction is summed
+// into force_on_master() and moment_on_master().
 // two_way (symmetric contact, deformable pairs only): a second pass with the roles swapped, so
 // neither surface's nodes pass through the other's faces.
 //
@@ -35,7 +36,6 @@
 
 #include "contact/friction.hpp"
 #include "contact/projection.hpp"
-#include "contact/rigid.hpp"
 #include "contact/search.hpp"
 #include "contact/surface.hpp"
 
@@ -65,10 +65,9 @@ struct ContactPoint {
 
 class ContactInterface {
 public:
-    /// Deformable slave nodes against deformable master faces (node numbers: the mesh's).
+    /// Deformable slave nodes against the master's faces, deformable (ContactSurface::from_part) or
+    /// rigid (ContactSurface::rigid_part); node numbers: the mesh's.
     ContactInterface(std::string name, ContactSurface slave, ContactSurface master, ContactOptions options = {});
-    /// Deformable slave nodes against a rigid body's faces.
-    ContactInterface(std::string name, ContactSurface slave, RigidSurface master, ContactOptions options = {});
     ~ContactInterface();
     ContactInterface(ContactInterface&&) noexcept;
 
@@ -89,16 +88,18 @@ public:
     /// Its moment about `about` (for a rigid master: the reaction a transducer measures).
     Vec3 moment_on_master(const Vec3& about) const { return m_master_ - about.cross(f_master_); }
     const std::vector<ContactPoint>& contacts() const { return points_; }
-    /// Current positions of the rigid master's points (empty for a deformable master).
-    const std::vector<Vec3>& rigid_positions() const { return rigid_x_; }
-    const RigidSurface* rigid() const { return rigid_.get(); }
+    /// True when the master is a rigid part.
+    bool rigid_master() const { return master_->rigid; }
+    /// Deepest penetration over all evaluations so far [m], and the deepest as a fraction of the slave
+    /// node's local element size (ContactSurface::node_size; the two maxima need not be one node's).
+    double max_penetration() const { return max_penetration_; }
+    double max_penetration_fraction() const { return max_penetration_fraction_; }
+    /// Wall time spent in the candidate search (CandidateList::update) over all evaluations [s].
+    double search_seconds() const { return search_s_; }
     /// The surfaces: pass 0's slave nodes lie on slave_surface(), its master segments on
-    /// master_surface() (nullptr for a rigid master, see rigid()); pass 1 swaps them.
+    /// master_surface(); pass 1 (two-way) swaps them.
     const ContactSurface& slave_surface() const { return *slave_; }
-    const ContactSurface* master_surface() const { return master_.get(); }
-    /// The rigid master, to change its motion during a run (e.g. a new conveyor schedule that agrees
-    /// with the old one up to the current time); nullptr for a deformable master.
-    RigidSurface* rigid() { return rigid_.get(); }
+    const ContactSurface& master_surface() const { return *master_; }
     /// Highest frequency squared [1/s^2] the penalty springs can add to the mesh, for the time step
     /// (Weyl: omega_max^2(elements + contact) <= omega_e^2 + this, so dt <= 2 / sqrt(omega_e^2 +
     /// this)). Bound used: max over every slave node of k (1/m_slave + 1/m_lightest master node of
@@ -111,6 +112,12 @@ public:
     /// Search statistics: candidate-list rebuilds and cycles of pass 0.
     long rebuilds() const;
     long cycles() const;
+    /// Restart: everything a later evaluate depends on (per pass the candidate lists, counters and
+    /// rebuild positions, each slave node's friction spring force and segment), the energies and
+    /// statistics, and the last evaluation's outputs, under the HDF5 group `prefix`. restore_state
+    /// throws InputError when the file's surfaces differ in size from this interface's.
+    void save_state(io::H5Writer& w, const std::string& prefix) const;
+    void restore_state(const io::H5Reader& r, const std::string& prefix);
 
 private:
     struct Pass;
@@ -120,10 +127,9 @@ private:
     ContactOptions opt_;
     // On the heap: the passes point at them, and the interface is moved into the model.
     std::unique_ptr<ContactSurface> slave_, master_;
-    std::unique_ptr<RigidSurface> rigid_;
     std::vector<std::unique_ptr<Pass>> passes_;
-    std::vector<Vec3> rigid_x_, rigid_v_;
     double stored_ = 0.0, dissipated_ = 0.0, rigid_work_ = 0.0, rigid_power_ = 0.0;
+    double max_penetration_ = 0.0, max_penetration_fraction_ = 0.0, search_s_ = 0.0;
     Vec3 f_master_ = Vec3::Zero(), m_master_ = Vec3::Zero();
     std::vector<ContactPoint> points_;
 };

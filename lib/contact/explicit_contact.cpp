@@ -3,6 +3,11 @@
 #include <cmath>
 #include <limits>
 
+#include <fmt/format.h>
+
+#include "core/error.hpp"
+#include "io/hdf5.hpp"
+
 namespace fem::contact {
 
 void ContactProvider::initialize(const NodalState& s) {
@@ -21,13 +26,27 @@ double ContactProvider::stable_time_step(const NodalState&) const {
     return w2_ > 0.0 ? 2.0 / std::sqrt(w2_) : std::numeric_limits<double>::infinity();
 }
 
+ContactReport ContactProvider::contact_report() const {
+    return {true, c_.max_penetration(), c_.max_penetration_fraction(), c_.stored_energy(), c_.dissipated_energy()};
+}
+
+void ContactProvider::save_state(io::H5Writer& w, const std::string& prefix) const {
+    w.write(prefix + "provider", std::vector<double>{t_prev_, first_ ? 1.0 : 0.0});
+    c_.save_state(w, prefix + "interface/");
+}
+
+void ContactProvider::restore_state(const io::H5Reader& r, const std::string& prefix) {
+    const auto v = r.read(prefix + "provider");
+    if (v.size() != 2)
+        throw InputError(fmt::format("restart file '{}': contact '{}': bad {}provider", r.path().string(), name(), prefix));
+    t_prev_ = v[0];
+    first_ = v[1] != 0.0;
+    c_.restore_state(r, prefix + "interface/");
+}
+
 ContactInterface& add_contact(ExplicitModel& model, ContactInterface contact) {
     auto& p = model.add_force_provider(std::make_unique<ContactProvider>(std::move(contact)));
     return static_cast<ContactProvider&>(p).contact();
-}
-
-void prescribe_rigid_motion(ExplicitModel& model, const std::vector<int>& nodes, RigidMotion motion) {
-    model.prescribe_motion(nodes, [m = std::move(motion)](const Vec3& X, double t) { return m.position(X, t); });
 }
 
 Resultant support_reaction(const ExplicitSolver& solver, const std::vector<int>& nodes, const Vec3& about) {

@@ -1,6 +1,6 @@
 #pragma once
 // Contact in the explicit solver: a ContactInterface as the solver's ForceProvider
-// (explicit/element_group.hpp), rigid-body motion of nodes, and the support reaction.
+// (explicit/element_group.hpp), and the support reaction.
 //
 //   Mesh mesh = ...;                                  // finger (hex8) + object parts
 //   ExplicitModel model(mesh);
@@ -9,8 +9,12 @@
 //   auto& c = contact::add_contact(model, contact::ContactInterface("finger on object",
 //       contact::ContactSurface::from_part(mesh, "finger", rubber),
 //       contact::ContactSurface::from_part(mesh, "object", aluminium), co));
-//   contact::prescribe_rigid_motion(model, mesh.node_set("root"),           // root on the drum
-//       contact::RigidMotion::rotation(drum_centre, Vec3::UnitZ(), contact::TimeFunction::constant(2.095)));
+//   model.prescribe_motion(mesh.node_set("root"),                          // root on the drum
+//       RigidMotion::rotation(drum_centre, Vec3::UnitZ(), Curve::constant(2.095)));
+//   model.add_rigid_part("ground", RigidMotion::fixed());                   // a rigid master
+//   contact::add_contact(model, contact::ContactInterface("object on ground",
+//       contact::ContactSurface::from_part(mesh, "object", aluminium),
+//       contact::ContactSurface::rigid_part(mesh, "ground", 0.01), co));
 //   ExplicitSolver solver(model, opt);
 //   solver.observer = [&](const ExplicitSolver& s) { ... c.force_on_master(), c.contacts() ... };
 //
@@ -33,6 +37,10 @@ public:
     void add_forces(double t, const NodalState& s, std::vector<Vec3>& force, std::vector<Vec3>& moment) override;
     /// 2 / omega of the penalty springs (ContactInterface::stability_frequency_squared).
     double stable_time_step(const NodalState& s) const override;
+    double search_seconds() const override { return c_.search_seconds(); }
+    ContactReport contact_report() const override;
+    void save_state(io::H5Writer& w, const std::string& prefix) const override;
+    void restore_state(const io::H5Reader& r, const std::string& prefix) override;
     ContactInterface& contact() { return c_; }
     const ContactInterface& contact() const { return c_; }
 
@@ -46,10 +54,6 @@ private:
 /// Adds the interface to the model as a force provider; the returned reference stays valid for the
 /// model's life (outputs: force_on_master(), contacts(), energies).
 ContactInterface& add_contact(ExplicitModel& model, ContactInterface contact);
-
-/// The nodes follow the rigid body exactly: x(t) = motion.position(X, t) (e.g. the finger root on
-/// the drum turning at 20 rpm, thesis Table 3-6).
-void prescribe_rigid_motion(ExplicitModel& model, const std::vector<int>& nodes, RigidMotion motion);
 
 /// Reaction force and moment (about `about`) of the supports at `nodes` (fixed nodes carrying no
 /// load or contact themselves): the sum of the internal (resisting) forces there, e.g. the F/T

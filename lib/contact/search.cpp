@@ -5,6 +5,7 @@
 #include <string>
 
 #include "core/error.hpp"
+#include "io/hdf5.hpp"
 
 namespace fem::contact {
 
@@ -84,6 +85,47 @@ void brute_force_query(std::span<const Box> boxes, const Vec3& p, std::vector<in
 CandidateList::CandidateList(double margin, int max_interval) : margin_(margin), max_interval_(max_interval) {
     if (!(margin > 0.0)) throw InputError("contact search: the margin must be > 0");
     if (max_interval < 1) throw InputError("contact search: the rebuild interval must be >= 1 cycle");
+}
+
+namespace {
+Eigen::MatrixXd rows_of(const std::vector<Vec3>& v) {
+    Eigen::MatrixXd m(v.size(), 3);
+    for (std::size_t i = 0; i < v.size(); ++i) m.row(i) = v[i].transpose();
+    return m;
+}
+std::vector<Vec3> vec3s(const Eigen::MatrixXd& m) {
+    std::vector<Vec3> v(m.rows());
+    for (Eigen::Index i = 0; i < m.rows(); ++i) v[i] = m.row(i).transpose();
+    return v;
+}
+std::vector<long long> as_ll(const std::vector<int>& v) { return {v.begin(), v.end()}; }
+std::vector<int> as_int(const std::vector<long long>& v) { return {v.begin(), v.end()}; }
+}  // namespace
+
+void CandidateList::save_state(io::H5Writer& w, const std::string& prefix) const {
+    w.write_ints(prefix + "counters", {since_, rebuilds_, cycles_});
+    w.write(prefix + "slave0", rows_of(slave0_));
+    w.write(prefix + "master0", rows_of(master0_));
+    w.write_ints(prefix + "offset", as_ll(offset_));
+    w.write_ints(prefix + "items", as_ll(items_));
+    Eigen::MatrixXd b(boxes_.size(), 6);
+    for (std::size_t i = 0; i < boxes_.size(); ++i) b.row(i) << boxes_[i].lo.transpose(), boxes_[i].hi.transpose();
+    w.write(prefix + "boxes", b);
+}
+
+void CandidateList::restore_state(const io::H5Reader& r, const std::string& prefix) {
+    const auto c = r.read_ints(prefix + "counters");
+    if (c.size() != 3) throw InputError("restart file '" + r.path().string() + "': bad " + prefix + "counters");
+    since_ = static_cast<int>(c[0]);
+    rebuilds_ = c[1];
+    cycles_ = c[2];
+    slave0_ = vec3s(r.read_matrix(prefix + "slave0"));
+    master0_ = vec3s(r.read_matrix(prefix + "master0"));
+    offset_ = as_int(r.read_ints(prefix + "offset"));
+    items_ = as_int(r.read_ints(prefix + "items"));
+    const Eigen::MatrixXd b = r.read_matrix(prefix + "boxes");
+    boxes_.resize(b.rows());
+    for (Eigen::Index i = 0; i < b.rows(); ++i) boxes_[i] = {b.row(i).head<3>().transpose(), b.row(i).tail<3>().transpose()};
 }
 
 }  // namespace fem::contact

@@ -8,7 +8,8 @@
 // by the face moved back along its normal by `depth`, widened by `lateral`. Its box is the box of
 // the corner nodes x_k and of x_k - depth n_k (n_k the unit normal at corner k), widened by
 // lateral + depth max|n_j - n_k| (the spread of the normal over a warped face) + margin. Boxes
-// are anisotropic: a flat face's box is thin in-plane-wide, not a cube of the depth.
+// are anisotropic: a flat face's box is thin in-plane-wide, not a cube of the depth. A two-sided
+// segment (a shell with thickness, Segment::two_sided) captures on both sides: x_k + depth n_k too.
 //
 // Rebuild rule (why nothing is missed): every slave node's candidates are the segments whose
 // widened box contains it at the rebuild. Let d_s and d_m be the largest displacements of any
@@ -22,9 +23,15 @@
 // rebuild: O(segments x cells per box + nodes x candidates), i.e. proportional to the surface.
 #include <cstdint>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "core/types.hpp"
+
+namespace fem::io {
+class H5Writer;
+class H5Reader;
+}  // namespace fem::io
 
 namespace fem::contact {
 
@@ -80,6 +87,9 @@ public:
     long cycles() const { return cycles_; }
     double margin() const { return margin_; }
     void force_rebuild() { since_ = -1; }
+    /// Restart: the lists, the positions of the last rebuild and the counters, under `prefix`.
+    void save_state(io::H5Writer& w, const std::string& prefix) const;
+    void restore_state(const io::H5Reader& r, const std::string& prefix);
 
 private:
     double margin_;
@@ -136,8 +146,9 @@ bool CandidateList::update(std::span<const Vec3> slave_x, std::span<const Vec3> 
         for (int k = 0; k < seg.count; ++k) {
             const Vec3& a = master_x[seg.n[k]];
             const Vec3 back = a - depth[s] * n[k];
-            b.lo = b.lo.cwiseMin(a).cwiseMin(back);
-            b.hi = b.hi.cwiseMax(a).cwiseMax(back);
+            const Vec3 front = seg.two_sided ? Vec3(a + depth[s] * n[k]) : a;
+            b.lo = b.lo.cwiseMin(front).cwiseMin(back);
+            b.hi = b.hi.cwiseMax(front).cwiseMax(back);
         }
         const double r = lateral[s] + depth[s] * spread + margin_;
         b.lo.array() -= r;

@@ -1,6 +1,7 @@
 #include "contact/surface.hpp"
 
 #include <algorithm>
+#include <set>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -72,8 +73,11 @@ double element_volume(ElementShape shape, std::span<const Vec3> x) {
 }
 
 ContactSurface ContactSurface::from_part(const Mesh& mesh, std::string_view part, const ElasticMaterial& material,
-                                         double sf) {
+                                         double sf, double shell_thickness) {
     if (!(sf > 0.0)) throw InputError(fmt::format("contact surface of part '{}': scale factor {} must be > 0", part, sf));
+    if (!(shell_thickness >= 0.0) || !std::isfinite(shell_thickness))
+        throw InputError(fmt::format("contact surface of part '{}': shell thickness {} must be >= 0", part,
+                                     shell_thickness));
     ContactSurface surf;
     surf.name = std::string(part);
     const double B = bulk_modulus(material);
@@ -111,6 +115,8 @@ ContactSurface ContactSurface::from_part(const Mesh& mesh, std::string_view part
                                                        (X[s.n[0]] - X[s.n[2]]).norm()});
                 s.stiffness = shell_penalty_stiffness(B, s.area, diag, sf);  // Eq 2-30b
                 s.depth = 0.5 * diag;
+                s.offset = 0.5 * shell_thickness;
+                s.two_sided = shell_thickness > 0.0;
                 surf.segments.push_back(s);
                 continue;
             }
@@ -145,16 +151,17 @@ ContactSurface ContactSurface::from_part(const Mesh& mesh, std::string_view part
             }
         }
     }
-    std::map<int, double> k_node;
-    auto add_node = [&](int node, double k) {
-        auto [it, fresh] = k_node.emplace(node, k);
-        if (!fresh) it->second = std::min(it->second, k);
+    std::map<int, std::pair<double, double>> k_node;  // node -> (smallest k, smallest element size)
+    auto add_node = [&](int node, const Segment& s) {
+        const double size = s.volume > 0.0 ? s.volume / s.area : std::sqrt(s.area);
+        auto [it, fresh] = k_node.emplace(node, std::pair{s.stiffness, size});
+        if (!fresh) it->second = {std::min(it->second.first, s.stiffness), std::min(it->second.second, size)};
     };
     for (const auto& [k, f] : faces)
         if (f.uses == 1) {
             surf.segments.push_back(f.seg);
             for (int m : f.mid)
-                if (m >= 0) add_node(m, f.seg.stiffness);
+                if (m >= 0) add_node(m, f.seg);
         }
     if (surf.segments.empty())
         throw InputError(fmt::format("contact surface of part '{}': the part has no solid or shell elements", part));
@@ -163,10 +170,15 @@ ContactSurface ContactSurface::from_part(const Mesh& mesh, std::string_view part
         return a.block != b.block ? a.block < b.block : a.element < b.element;
     });
     for (const auto& s : surf.segments)
-        for (int i = 0; i < s.count; ++i) add_node(s.n[i], s.stiffness);
+        for (int i = 0; i < s.count; ++i) add_node(s.n[i], s);
+    std::map<int, double> offset;  // slave nodes of shells carry half the thickness
+    for (const auto& s : surf.segments)
+        for (int i = 0; i < s.count; ++i) offset[s.n[i]] = std::max(offset[s.n[i]], s.offset);
     for (const auto& [node, k] : k_node) {
         surf.nodes.push_back(node);
-        surf.node_stiffness.push_back(k);
+        surf.node_stiffness.push_back(k.first);
+        surf.node_size.push_back(k.second);
+        surf.node_offset.push_back(offset[node]);
     }
     return surf;
 }
@@ -174,22 +186,68 @@ ContactSurface ContactSurface::from_part(const Mesh& mesh, std::string_view part
 ContactSurface ContactSurface::merge(std::string name, const std::vector<ContactSurface>& parts) {
     ContactSurface m;
     m.name = std::move(name);
-    std::vector<std::pair<int, double>> nodes;
+    struct NodeData { int node; double stiffness, size, offset; };
+    std::vector<NodeData> nodes;
     for (const auto& p : parts) {
         if (p.rigid) throw InputError(fmt::format("contact surface '{}': cannot merge rigid surface '{}'", m.name, p.name));
         m.segments.insert(m.segments.end(), p.segments.begin(), p.segments.end());
-        for (std::size_t i = 0; i < p.nodes.size(); ++i) nodes.emplace_back(p.nodes[i], p.node_stiffness[i]);
+        for (std::size_t i = 0; i < p.nodes.size(); ++i)
+            nodes.push_back({p.nodes[i], p.node_stiffness[i], p.node_size[i], p.node_offset[i]});
     }
-    std::sort(nodes.begin(), nodes.end());
+    std::sort(nodes.begin(), nodes.end(), [](const NodeData& a, const NodeData& b) { return a.node < b.node; });
     for (std::size_t i = 0; i < nodes.size(); ++i) {
-        if (i > 0 && nodes[i].first == nodes[i - 1].first)
+        if (i > 0 && nodes[i].node == nodes[i - 1].node)
             throw InputError(fmt::format("contact surface '{}': node {} belongs to two of the merged parts", m.name,
-                                         nodes[i].first));
-        m.nodes.push_back(nodes[i].first);
-        m.node_stiffness.push_back(nodes[i].second);
+                                         nodes[i].node));
+        m.nodes.push_back(nodes[i].node);
+        m.node_stiffness.push_back(nodes[i].stiffness);
+        m.node_size.push_back(nodes[i].size);
+        m.node_offset.push_back(nodes[i].offset);
     }
     if (m.segments.empty()) throw InputError(fmt::format("contact surface '{}': nothing to merge", m.name));
     return m;
+}
+
+ContactSurface ContactSurface::rigid_part(const Mesh& mesh, std::string_view part, double depth) {
+    if (!(depth > 0.0)) throw InputError(fmt::format("rigid contact surface '{}': depth {} must be > 0", part, depth));
+    // Any material: the stiffness is discarded (a rigid side takes the deformable side's k).
+    ContactSurface s = from_part(mesh, part, ElasticMaterial::make("rigid", 1.0, 0.0, 1.0));
+    for (auto& seg : s.segments) {
+        seg.stiffness = std::numeric_limits<double>::infinity();
+        seg.depth = depth;
+        seg.volume = 0.0;
+    }
+    s.nodes.clear();
+    s.node_stiffness.clear();
+    s.node_size.clear();
+    s.node_offset.clear();
+    s.rigid = true;
+    return s;
+}
+
+std::size_t ContactSurface::remove_faces_on(const std::vector<int>& on) {
+    const std::set<int> in(on.begin(), on.end());
+    const std::size_t before = segments.size();
+    std::erase_if(segments, [&](const Segment& s) {
+        for (int a = 0; a < s.count; ++a)
+            if (!in.count(s.n[a])) return false;
+        return true;
+    });
+    std::set<int> used;
+    for (const auto& s : segments)
+        for (int a = 0; a < s.count; ++a) used.insert(s.n[a]);
+    std::size_t k = 0;
+    for (std::size_t i = 0; i < nodes.size(); ++i) {
+        if (!used.count(nodes[i])) continue;
+        nodes[k] = nodes[i], node_stiffness[k] = node_stiffness[i];
+        if (!node_size.empty()) node_size[k] = node_size[i];
+        if (!node_offset.empty()) node_offset[k] = node_offset[i];
+        ++k;
+    }
+    nodes.resize(k), node_stiffness.resize(k);
+    if (!node_size.empty()) node_size.resize(k);
+    if (!node_offset.empty()) node_offset.resize(k);
+    return before - segments.size();
 }
 
 double ContactSurface::mean_segment_size() const {

@@ -25,6 +25,7 @@
 #include <array>
 
 #include "core/types.hpp"
+#include "element/hex8_explicit.hpp"
 #include "material/elastic.hpp"
 
 namespace fem::beam {
@@ -55,14 +56,71 @@ Reference make_reference(const Vec3& a, const Vec3& b, const Vec3& orientation =
 struct Result {
     Vec3 force[2];    // internal (resisting) forces on the nodes, global
     Vec3 moment[2];   // internal moments on the nodes, global
+    double length = 0.0;  // current length l
     double strain_energy = 0.0;
     double axial_force = 0.0;
     double max_stress = 0.0;  // |N|/A + max bending stress (circular/rectangular fibre) for output
 };
 
+/// What the kernel needs of the section and the material for one element (computed once).
+struct Stiffness {
+    double length = 0.0;                // L0
+    double axial = 0.0;                 // EA / L0
+    double torsion = 0.0;               // GJ / L0
+    double bend_y = 0.0, bend_z = 0.0;  // E Iy / L0, E Iz / L0
+    double inv_area = 0.0;              // 1 / A, and outer fibre over second moment (c_y / Iy,
+    double fibre_y = 0.0, fibre_z = 0.0;  // c_z / Iz) for the output stress
+    static Stiffness of(const Reference& ref, const Section& s, const ElasticMaterial& m);
+};
+
 /// Internal forces at current positions x and nodal rotation matrices R.
+void internal_force(const Reference& ref, const Stiffness& k, const Vec3& x1, const Vec3& x2, const Mat3& R1,
+                    const Mat3& R2, Result& out);
+
+// --- The per-cycle kernel (what the explicit solver's BeamGroup calls) ---------------------------
+//
+// hex8::kLanes elements per pass, one per lane, each doing exactly the operations of the one-element
+// internal_force() above (which runs the same code with T = double): the same bits (fp-contract=off,
+// no FMA in any clone; element/kernel_lanes.hpp). The small-rotation branch of the local rotation
+// vector (the usual case) runs in the lanes; a lane that needs the general formula (asin or the
+// angle-axis of a large local rotation) gets it alone, as the scalar path does.
+
+/// Reference frame and stiffness in the kernel's layout: T = double for one element, T = Lanes for
+/// kLanes elements.
+template <class T>
+struct alignas(sizeof(T)) PackedT {
+    T frame0[3][3];  // initial element frame, frame0[i][j] = E0(i, j)
+    T length, axial, torsion, bend_y, bend_z, inv_area, fibre_y, fibre_z;  // as Stiffness
+};
+using Packed = PackedT<double>;
+using PackedBlock = PackedT<hex8::Lanes>;
+Packed pack(const Reference& ref, const Stiffness& k);
+void pack_lane(const Packed& p, int lane, PackedBlock& block);
+
+/// What the kernel returns (per element, or per lane).
+template <class T>
+struct alignas(sizeof(T)) KernelResultT {
+    T force[3];      // internal force on node 1 (node 2: the opposite)
+    T moment[2][3];  // internal moments on nodes 1 and 2
+    T length, strain_energy, axial_force, max_stress;  // as Result
+};
+using KernelResult = KernelResultT<double>;
+using KernelResultBlock = KernelResultT<hex8::Lanes>;
+
+/// Nodal positions x_n[i] and rotation matrices R_n[i][j] (node n = 1, 2 of the element).
+void internal_force(const Packed& p, const double (&x1)[3], const double (&x2)[3], const double (&R1)[3][3],
+                    const double (&R2)[3][3], KernelResult& out);
+void internal_force(const PackedBlock& p, const hex8::Lanes (&x1)[3], const hex8::Lanes (&x2)[3],
+                    const hex8::Lanes (&R1)[3][3], const hex8::Lanes (&R2)[3][3], KernelResultBlock& out);
+/// The same with the stiffness computed from the section and material on each call (tests).
 void internal_force(const Reference& ref, const Section& s, const ElasticMaterial& m, const Vec3& x1,
                     const Vec3& x2, const Mat3& R1, const Mat3& R2, Result& out);
+
+/// Nodal triad update of the explicit solver: R <- exp([phi]x) R for the rotation vector phi = omega
+/// dt (Rodrigues: exp([phi]x) = I + sin|phi|/|phi| [phi]x + (1 - cos|phi|)/|phi|^2 [phi]x^2, the two
+/// factors by their Taylor series below |phi| = 0.01, where they are exact to round-off and cost no
+/// libm call; a step turns a node by ~1e-6 rad).
+void rotate(const Vec3& phi, Mat3& R);
 
 /// Isotropic rotational inertia lumped at each node of one element (see the header comment).
 double nodal_rotational_inertia(const Section& s, const ElasticMaterial& m, double length);

@@ -78,6 +78,40 @@ double tetrahedron_length(const std::array<Vec3, 4>& x) {
     return 3.0 * volume / largest;
 }
 
+double tet10_subtetrahedron_length(std::span<const Vec3> x) {
+    if (x.size() < 10) throw InputError("tet10_subtetrahedron_length: a tet10 element needs 10 nodes, got " + std::to_string(x.size()));
+    // Mid-edge node of the edge between corners i and j (Gmsh's tet10 order).
+    auto mid = [&](int i, int j) -> const Vec3& {
+        static const int edge[4][4] = {{-1, 4, 6, 7}, {4, -1, 5, 9}, {6, 5, -1, 8}, {7, 9, 8, -1}};
+        return x[edge[i][j]];
+    };
+    auto altitude = [](const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
+        return tetrahedron_length({a, b, c, d});
+    };
+    double length = std::numeric_limits<double>::infinity();
+    for (int i = 0; i < 4; ++i) {  // corner tetrahedra: the corner and its three edges' mid-nodes
+        int o[3], k = 0;
+        for (int j = 0; j < 4; ++j)
+            if (j != i) o[k++] = j;
+        length = std::min(length, altitude(x[i], mid(i, o[0]), mid(i, o[1]), mid(i, o[2])));
+    }
+    // The inner octahedron: three pairs of opposite mid-nodes (01-23, 02-13, 03-12); split along the
+    // shortest diagonal into four tetrahedra around it.
+    const int pairs[3][4] = {{0, 1, 2, 3}, {0, 2, 1, 3}, {0, 3, 1, 2}};  // diagonal (i j)-(k l)
+    int best = 0;
+    for (int p = 1; p < 3; ++p)
+        if ((mid(pairs[p][0], pairs[p][1]) - mid(pairs[p][2], pairs[p][3])).norm() <
+            (mid(pairs[best][0], pairs[best][1]) - mid(pairs[best][2], pairs[best][3])).norm())
+            best = p;
+    const Vec3 &d0 = mid(pairs[best][0], pairs[best][1]), &d1 = mid(pairs[best][2], pairs[best][3]);
+    // The four other mid-nodes form a ring around the diagonal: each shares a corner with its
+    // neighbours in the ring (e.g. for the diagonal 01-23: 02, 03, 13, 12).
+    const int a = pairs[best][0], b = pairs[best][1], c = pairs[best][2], d = pairs[best][3];
+    const Vec3* ring[4] = {&mid(a, c), &mid(a, d), &mid(b, d), &mid(b, c)};
+    for (int r = 0; r < 4; ++r) length = std::min(length, altitude(d0, d1, *ring[r], *ring[(r + 1) % 4]));
+    return length;
+}
+
 double characteristic_length(ElementShape shape, std::span<const Vec3> nodes) {
     if (static_cast<int>(nodes.size()) < node_count(shape)) {
         std::ostringstream msg;

@@ -50,6 +50,15 @@ double hexahedron_length(const std::array<Vec3, 8>& x);
 /// Tetrahedron: the minimum altitude, 3 V / (largest face area).
 double tetrahedron_length(const std::array<Vec3, 4>& x);
 
+/// 10-node tetrahedron (Gmsh order: corners 0-3, mid-edge nodes on edges 01, 12, 20, 03, 23, 13) read
+/// as the eight straight 4-node tetrahedra its nodes span: one at each corner, four filling the inner
+/// octahedron split along its shortest diagonal. Returns the smallest of their minimum altitudes.
+/// Not Table 2-1's rule (which this library keeps for tet10: the corner tetrahedron's altitude), but
+/// the candidate for the tet10 step rule of the thesis's LS-DYNA runs that finger_damping examines
+/// (Table 3-2 Cases C and D; README "Table 3-2: the tet10 time step"). For a regular tetrahedron of
+/// edge a it is a / (2 sqrt 2) (an octahedron piece), 0.433 x the corner altitude a sqrt(2/3).
+double tet10_subtetrahedron_length(std::span<const Vec3> nodes);
+
 /// Characteristic length for any shape from its nodes (corner nodes for Quad8/Tet10).
 double characteristic_length(ElementShape shape, std::span<const Vec3> nodes);
 

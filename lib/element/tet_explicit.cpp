@@ -8,6 +8,9 @@
 
 #include "core/error.hpp"
 #include "element/solid_elements.hpp"
+// The lane helpers and the material point shared with the hexahedron; it also sets fp-contract=off
+// for this whole file (no FMA: every version of the kernel gives the same bits).
+#include "element/kernel_lanes.hpp"
 
 namespace fem::tet {
 
@@ -52,7 +55,8 @@ Reference<N, Q> make_reference(std::span<const Vec3> X, const std::array<Vec3, Q
             throw InputError(fmt::format("{}: non-positive Jacobian {:.4g} at integration point {} (inverted or "
                                          "degenerate element)",
                                          element_name, det, q));
-        const Mat3 jinvt = J.inverse().transpose();
+        ref.jinv[q] = J.inverse();
+        const Mat3 jinvt = ref.jinv[q].transpose();
         for (int a = 0; a < N; ++a) ref.dndx[q][a] = jinvt * d[a];
         ref.weight[q] = w * det;
         ref.volume += ref.weight[q];
@@ -67,9 +71,12 @@ Tet4Reference make_tet4_reference(std::span<const Vec3> X, const char* element_n
     return make_reference<4, 1>(X, {Vec3(0.25, 0.25, 0.25)}, 1.0 / 6.0, element_name);
 }
 
+// The 4-point rule of degree 2 of the tet10: barycentric (a, b, b, b) and permutations, weights
+// 1/24 (of the natural volume 1/6). Point q has L_q = a and the other three b.
+constexpr double kRuleA = 0.5854101966249685, kRuleB = 0.1381966011250105;
+
 Tet10Reference make_tet10_reference(std::span<const Vec3> X, const char* element_name) {
-    // 4-point rule of degree 2: barycentric (a, b, b, b) and permutations, weights 1/24.
-    const double a = 0.5854101966249685, b = 0.1381966011250105;
+    const double a = kRuleA, b = kRuleB;  // (xi, eta, zeta) = (L1, L2, L3)
     return make_reference<10, 4>(X, {Vec3(b, b, b), Vec3(a, b, b), Vec3(b, a, b), Vec3(b, b, a)}, 1.0 / 24.0,
                                  element_name);
 }
@@ -177,6 +184,191 @@ double element_omega_max(const Eigen::MatrixXd& K, std::span<const double> nodal
     Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(A, Eigen::EigenvaluesOnly);
     return std::sqrt(std::max(0.0, eig.eigenvalues()[n - 1]));
 }
+
+// --- the per-cycle kernel -------------------------------------------------------------------------
+
+template <int N, int Q>
+TetPacked<Q> pack(const Reference<N, Q>& ref) {
+    TetPacked<Q> p;
+    for (int q = 0; q < Q; ++q) {
+        for (int k = 0; k < 3; ++k)
+            for (int j = 0; j < 3; ++j) p.A[q][k][j] = ref.jinv[q](k, j);
+        p.weight[q] = ref.weight[q];
+    }
+    p.length0 = std::cbrt(ref.volume);
+    return p;
+}
+template TetPacked<1> pack(const Reference<4, 1>&);
+template TetPacked<4> pack(const Reference<10, 4>&);
+
+template <int Q>
+void pack_lane(const TetPacked<Q>& p, int l, TetPackedBlock<Q>& b) {
+    for (int q = 0; q < Q; ++q) {
+        for (int k = 0; k < 3; ++k)
+            for (int j = 0; j < 3; ++j) b.A[q][k][j][l] = p.A[q][k][j];
+        b.weight[q][l] = p.weight[q];
+    }
+    b.length0[l] = p.length0;
+}
+template void pack_lane(const TetPacked<1>&, int, TetPackedBlock<1>&);
+template void pack_lane(const TetPacked<4>&, int, TetPackedBlock<4>&);
+
+namespace {
+using lanes::select;
+
+// dN_a/dL_m of the tet10 at its point q (header): 4 L_m - 1 on the corners, 4 L for the edges.
+// L_m = kRuleA at m = q, kRuleB elsewhere; the edges (i, j) in Gmsh order as kEdge.
+inline double corner_factor(int q, int m) { return 4.0 * (m == q ? kRuleA : kRuleB) - 1.0; }
+inline double edge_factor(int q, int m) { return 4.0 * (m == q ? kRuleA : kRuleB); }
+
+// G_ik = sum_a u_a,i dN_a/dxi_k at point q, from the nodal values u[i][a].
+template <int N, class T>
+[[gnu::always_inline]] inline void natural_gradient(int q, const T (&u)[3][N], T (&G)[3][3]) {
+    for (int i = 0; i < 3; ++i) {
+        T c[4];  // c_m = sum_a u_a,i dN_a/dL_m
+        if constexpr (N == 4) {
+            for (int m = 0; m < 4; ++m) c[m] = u[i][m];
+        } else {
+            for (int m = 0; m < 4; ++m) c[m] = corner_factor(q, m) * u[i][m];
+            for (int e = 0; e < 6; ++e) {
+                const int a = kEdge[e][0], b = kEdge[e][1];
+                c[a] += edge_factor(q, b) * u[i][4 + e];
+                c[b] += edge_factor(q, a) * u[i][4 + e];
+            }
+        }
+        for (int k = 0; k < 3; ++k) G[i][k] = c[k + 1] - c[0];
+    }
+}
+
+// f_a += sum_m dN_a/dL_m s_m at point q, with s_{k+1},i = S_ik and s_0 = -(s_1 + s_2 + s_3).
+template <int N, class T>
+[[gnu::always_inline]] inline void add_nodal_forces(int q, const T (&S)[3][3], T (&f)[3][N]) {
+    for (int i = 0; i < 3; ++i) {
+        const T s[4] = {-(S[i][0] + S[i][1] + S[i][2]), S[i][0], S[i][1], S[i][2]};
+        if constexpr (N == 4) {
+            for (int m = 0; m < 4; ++m) f[i][m] += s[m];
+        } else {
+            for (int m = 0; m < 4; ++m) f[i][m] += corner_factor(q, m) * s[m];
+            for (int e = 0; e < 6; ++e) {
+                const int a = kEdge[e][0], b = kEdge[e][1];
+                f[i][4 + e] += edge_factor(q, b) * s[a] + edge_factor(q, a) * s[b];
+            }
+        }
+    }
+}
+
+// S = w P A^T.
+template <class T>
+[[gnu::always_inline]] inline void weighted_stress(const T& w, const T (&P)[3][3], const T (&A)[3][3], T (&S)[3][3]) {
+    for (int i = 0; i < 3; ++i)
+        for (int k = 0; k < 3; ++k) S[i][k] = w * (P[i][0] * A[k][0] + P[i][1] * A[k][1] + P[i][2] * A[k][2]);
+}
+
+template <int N, int Q, class T>
+[[gnu::always_inline]] inline void kernel(const TetPackedT<Q, T>& p, const hex8::Hex8Material& mat,
+                                          const T (&u)[3][N], const T (&v)[3][N], TetKernelResultT<N, T>& out,
+                                          bool viscous_forces) {
+    for (int i = 0; i < 3; ++i)
+        for (int a = 0; a < N; ++a) out.f[i][a] = T{};
+    if (viscous_forces)
+        for (int i = 0; i < 3; ++i)
+            for (int a = 0; a < N; ++a) out.fv[i][a] = T{};
+    T energy{}, power{}, rate{}, volume{}, min_j{};
+    T bsum[3][3];  // sum_q w_q b_q (upper triangle): the deviator of sum_q w_q J_q sigma_q is mu times its
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) bsum[i][j] = T{};
+    for (int q = 0; q < Q; ++q) {
+        const auto& A = p.A[q];
+        T G[3][3], Gd[3][3], H[3][3], Fd[3][3];
+        natural_gradient<N>(q, u, G);
+        natural_gradient<N>(q, v, Gd);
+        for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j) {
+                H[i][j] = G[i][0] * A[0][j] + G[i][1] * A[1][j] + G[i][2] * A[2][j];
+                Fd[i][j] = Gd[i][0] * A[0][j] + Gd[i][1] * A[1][j] + Gd[i][2] * A[2][j];
+            }
+        lanes::MaterialPoint<T> m;
+        lanes::material_point(mat, H, Fd, p.length0, 0.0, m);
+        const T w = p.weight[q];
+        min_j = q == 0 ? m.J : select(m.J < min_j, m.J, min_j);
+        energy += w * m.W;
+        const T wj = w * m.J;
+        volume += wj;
+        rate += wj * m.trD;
+        power += wj * m.power;
+        for (int i = 0; i < 3; ++i)
+            for (int j = i; j < 3; ++j) bsum[i][j] += w * m.b[i][j];
+        T S[3][3];
+        weighted_stress(w, m.P, A, S);
+        add_nodal_forces<N>(q, S, out.f);
+        if (viscous_forces && m.viscous) {
+            weighted_stress(w, m.Pv, A, S);
+            add_nodal_forces<N>(q, S, out.fv);
+        }
+    }
+    out.strain_energy = energy;
+    out.viscous_power = power;
+    out.volumetric_strain_rate = rate / volume;
+    out.min_jacobian = min_j;
+    const T sc = mat.mu / volume;
+    out.von_mises_sq = sc * sc * lanes::von_mises_sq(bsum);
+}
+
+// Table 2-1 tetrahedron length on the corner nodes, as fem::cfl::tetrahedron_length: minimum
+// altitude 3 V / largest face area; the largest area from the largest squared cross product (one
+// square root: sqrt is monotone, so this is the same maximum).
+template <class T>
+[[gnu::always_inline]] inline T length_of(const T (&x)[3][4]) {
+    auto cross_sq = [&](int a, int b, int c, T (&n)[3]) {
+        T p[3], r[3];
+        for (int i = 0; i < 3; ++i) {
+            p[i] = x[i][b] - x[i][a];
+            r[i] = x[i][c] - x[i][a];
+        }
+        n[0] = p[1] * r[2] - p[2] * r[1];
+        n[1] = p[2] * r[0] - p[0] * r[2];
+        n[2] = p[0] * r[1] - p[1] * r[0];
+        return n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
+    };
+    T n[3];
+    T largest = cross_sq(0, 2, 3, n);  // face opposite node 1; its normal gives the volume below
+    const T e1[3] = {x[0][1] - x[0][0], x[1][1] - x[1][0], x[2][1] - x[2][0]};
+    const T v6 = e1[0] * n[0] + e1[1] * n[1] + e1[2] * n[2];  // 6 V (signed)
+    const T volume = select(v6 < 0.0, -v6, v6) / 6.0;
+    for (const auto& f : {std::array<int, 3>{0, 1, 2}, std::array<int, 3>{0, 1, 3}, std::array<int, 3>{1, 2, 3}}) {
+        const T a = cross_sq(f[0], f[1], f[2], n);
+        largest = select(a > largest, a, largest);
+    }
+    return 3.0 * volume / (0.5 * lanes::sqrt_lanes(largest));
+}
+}  // namespace
+
+void internal_force(const TetPacked<1>& p, const hex8::Hex8Material& mat, const double (&u)[3][4],
+                    const double (&v)[3][4], TetKernelResult<4>& out, bool viscous_forces) {
+    kernel<4, 1>(p, mat, u, v, out, viscous_forces);
+}
+void internal_force(const TetPacked<4>& p, const hex8::Hex8Material& mat, const double (&u)[3][10],
+                    const double (&v)[3][10], TetKernelResult<10>& out, bool viscous_forces) {
+    kernel<10, 4>(p, mat, u, v, out, viscous_forces);
+}
+FEM_KERNEL_CLONES
+void internal_force(const TetPackedBlock<1>& p, const hex8::Hex8Material& mat, const hex8::Lanes (&u)[3][4],
+                    const hex8::Lanes (&v)[3][4], TetKernelResultBlock<4>& out, bool viscous_forces) {
+    kernel<4, 1>(p, mat, u, v, out, viscous_forces);
+}
+FEM_KERNEL_CLONES
+void internal_force(const TetPackedBlock<4>& p, const hex8::Hex8Material& mat, const hex8::Lanes (&u)[3][10],
+                    const hex8::Lanes (&v)[3][10], TetKernelResultBlock<10>& out, bool viscous_forces) {
+    kernel<10, 4>(p, mat, u, v, out, viscous_forces);
+}
+
+FEM_KERNEL_CLONES
+void critical_time_step(const hex8::Lanes (&x)[3][4], const hex8::Lanes& trD, double c, const BulkViscosity& bulk,
+                        hex8::Lanes& dt) {
+    dt = lanes::solid_time_step(length_of(x), trD, c, bulk);
+}
+
+double characteristic_length(const double (&x)[3][4]) { return length_of(x); }
 
 template void internal_force<4, 1>(const Reference<4, 1>&, const hex8::Hex8Material&, std::span<const Vec3>,
                                    std::span<const Vec3>, Result<4>&);

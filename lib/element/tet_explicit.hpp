@@ -28,6 +28,7 @@
 #include <Eigen/Core>
 
 #include "core/types.hpp"
+#include "element/critical_time_step.hpp"
 #include "element/hex8_explicit.hpp"
 
 namespace fem::tet {
@@ -36,6 +37,7 @@ namespace fem::tet {
 template <int N, int Q>
 struct Reference {
     std::array<std::array<Vec3, N>, Q> dndx;  // dN_a/dX at point q
+    std::array<Mat3, Q> jinv;                 // J0^-1 at point q (J0 = dX/dxi): dN_a/dX = J0^-T dN_a/dxi
     std::array<double, Q> weight{};           // w_q det J0 (sums to V0)
     double volume = 0.0;                      // V0
 };
@@ -61,10 +63,81 @@ struct Result {
 };
 
 /// Internal forces at current coordinates x and velocities v (N each). `mat` as for the
-/// hexahedron (its hourglass_qm is not used).
+/// hexahedron (its hourglass_qm is not used). The direct, readable form (Eigen, one element): the
+/// reference the per-cycle kernel below is tested against.
 template <int N, int Q>
 void internal_force(const Reference<N, Q>& ref, const hex8::Hex8Material& mat, std::span<const Vec3> x,
                     std::span<const Vec3> v, Result<N>& out);
+
+// --- The per-cycle kernel (what the explicit solver's tet groups call) ----------------------------
+//
+// The same formulation as internal_force() above, organized for speed as the hexahedron's
+// (hex8_explicit.hpp): plain arrays with the nodes contiguous per component, kLanes elements per
+// pass (one per lane, each doing exactly the one-element operations: the same bits), the material
+// point shared with the hexahedron (displacement gradient H = F - I from the displacements, ln J by
+// a vectorizable log1p, the bulk-viscosity length cbrt(J V0) = cbrt(V0) cbrt(J)), von Mises kept
+// squared. Results equal internal_force()'s to round-off (tests/explicit).
+//
+// Gradients in barycentric form. With the natural coordinates xi_k = L_{k+1} (L_0 = 1 - sum), the
+// element stores per point only A = J0^-1 (9 numbers, not the 3N of dN/dX) and
+//   H = G A,  G_ik = sum_a u_a,i dN_a/dxi_k = c_{k+1},i - c_0,i,  c_m = sum_a u_a dN_a/dL_m,
+//   f_a = sum_m dN_a/dL_m s_m,  s_{k+1} = column k of S = w P A^T,  s_0 = -(s_1 + s_2 + s_3),
+// where dN_a/dL_m are constants of the point: tet10 corner m: 4 L_m - 1, mid-edge node of edge
+// (i, j): 4 L_j for m = i and 4 L_i for m = j (N = L_i (2 L_i - 1), 4 L_i L_j); tet4: N_m = L_m.
+
+/// Reference data in the kernel's layout: T = double for one element, T = Lanes for kLanes elements
+/// (entry [..][l] for the element in lane l).
+template <int Q, class T>
+struct alignas(sizeof(T)) TetPackedT {
+    T A[Q][3][3];  // J0^-1 at point q: A[q][k][j] = d xi_k / d X_j
+    T weight[Q];   // w_q det J0 [m^3]
+    T length0;     // cube root of V0 [m] (bulk viscosity length cbrt(J V0) = length0 cbrt(J))
+};
+template <int Q>
+using TetPacked = TetPackedT<Q, double>;
+template <int Q>
+using TetPackedBlock = TetPackedT<Q, hex8::Lanes>;
+template <int N, int Q>
+TetPacked<Q> pack(const Reference<N, Q>& ref);
+/// Puts one element's data `p` into lane `lane` of a block.
+template <int Q>
+void pack_lane(const TetPacked<Q>& p, int lane, TetPackedBlock<Q>& block);
+
+/// What the kernel returns (per element, or per lane).
+template <int N, class T>
+struct alignas(sizeof(T)) TetKernelResultT {
+    T f[3][N];                 // internal forces f[i][a]
+    T fv[3][N];                // their viscous part (bulk viscosity, beta damping): only when asked for
+    T strain_energy;           // sum_q w_q W(F_q)
+    T viscous_power;           // sum_q w_q J_q sigma_visc : D
+    T volumetric_strain_rate;  // tr D averaged over the current volume
+    T min_jacobian;            // smallest det F over the points; <= 0: inverted (the rest is meaningless)
+    T von_mises_sq;            // squared von Mises stress of the elastic Cauchy stress averaged over the current volume
+};
+template <int N>
+using TetKernelResult = TetKernelResultT<N, double>;
+template <int N>
+using TetKernelResultBlock = TetKernelResultT<N, hex8::Lanes>;
+
+/// Internal forces from the nodal displacements u[i][a] = x - X and velocities v[i][a] (node order
+/// of the element); the viscous part also in out.fv when `viscous_forces`.
+void internal_force(const TetPacked<1>& p, const hex8::Hex8Material& mat, const double (&u)[3][4],
+                    const double (&v)[3][4], TetKernelResult<4>& out, bool viscous_forces = false);
+void internal_force(const TetPackedBlock<1>& p, const hex8::Hex8Material& mat, const hex8::Lanes (&u)[3][4],
+                    const hex8::Lanes (&v)[3][4], TetKernelResultBlock<4>& out, bool viscous_forces = false);
+void internal_force(const TetPacked<4>& p, const hex8::Hex8Material& mat, const double (&u)[3][10],
+                    const double (&v)[3][10], TetKernelResult<10>& out, bool viscous_forces = false);
+void internal_force(const TetPackedBlock<4>& p, const hex8::Hex8Material& mat, const hex8::Lanes (&u)[3][10],
+                    const hex8::Lanes (&v)[3][10], TetKernelResultBlock<10>& out, bool viscous_forces = false);
+
+/// Table 2-1 critical step of the tetrahedra of a block on their current corner nodes x[i][a]
+/// (a = 0..3): fem::cfl::solid_time_step(fem::cfl::tetrahedron_length(x), wave_speed, trD, bulk)
+/// per lane, to round-off, with trD the kernel's volumetric strain rate (zeros when the bulk
+/// viscosity is off).
+void critical_time_step(const hex8::Lanes (&x)[3][4], const hex8::Lanes& trD, double wave_speed,
+                        const BulkViscosity& bulk, hex8::Lanes& dt);
+/// Table 2-1 length (minimum altitude 3 V / largest face area) of one tetrahedron, the kernel's way.
+double characteristic_length(const double (&x)[3][4]);
 
 /// Tangent stiffness of the element at the reference state (3N x 3N, DOFs ux, uy, uz node after
 /// node): the linearized neo-Hookean law is linear elasticity with the same lambda, mu, so this is

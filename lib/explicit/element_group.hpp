@@ -14,12 +14,18 @@
 #include <memory>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/types.hpp"
 #include "mesh/mesh.hpp"
 
 namespace fem {
+
+namespace io {
+class H5Writer;
+class H5Reader;
+}  // namespace io
 
 struct NodalState {
     std::vector<Vec3> X;      // reference coordinates
@@ -63,6 +69,10 @@ public:
     virtual bool needs_rotations() const { return false; }
     /// Nodes the group touches (for allocating rotational DOFs).
     virtual std::vector<int> nodes() const = 0;
+    /// Called by the solver once at the start of a run, when the nodal state (positions, rotations)
+    /// is set up and before the first force evaluation: a group with history variables (the stresses
+    /// of a rate-form shell) resets them to this state. Stateless groups ignore it.
+    virtual void initialize(const NodalState& s) {}
     /// Adds the group's lumped mass (and rotational inertia) to the state; returns the mass added
     /// by selective mass scaling (already included).
     virtual double add_lumped_mass(NodalState& s) const = 0;
@@ -78,6 +88,12 @@ public:
     virtual GroupForceResult internal_forces(NodalState& s, bool compute_dt) = 0;
     /// Per-element von Mises stress (beams: outer-fibre stress) at the last force evaluation.
     virtual std::vector<double> element_stress() const = 0;
+    /// Which rule gives element e's critical step (the summary names it for the controlling element):
+    /// "Table 2-1" unless the group has several (beams: axial L/c or the transverse bending bound).
+    virtual std::string time_step_rule(int element) const { return "Table 2-1"; }
+    /// Further per-element output fields for VTU (name, one value per element of the block), e.g.
+    /// the shells' von Mises stress at the top and bottom surfaces. Blocks of other groups get zeros.
+    virtual std::vector<std::pair<std::string, std::vector<double>>> cell_fields() const { return {}; }
 
     /// True when the group has viscous forces (bulk viscosity, stiffness damping) and, whenever
     /// s.fv is non-empty, internal_forces also adds their nodal values to s.fv (they stay in s.f).
@@ -95,8 +111,24 @@ public:
     /// only when the solver's Lanczos measurement does not converge.
     virtual double element_omega_bound() const { return 0.0; }
 
+    /// Restart (ExplicitSolver dumps): the group's own state that a later cycle depends on (history
+    /// variables such as plastic strains or incremental hourglass forces), written under the HDF5
+    /// group `prefix` (ending in '/') and read back into a group built the same way. Not the nodal
+    /// state, nor the forces of the last evaluation (the solver saves those). Today's groups keep
+    /// none: hyperelastic, total-form hourglass control, so their forces follow from x and v alone.
+    virtual void save_state(io::H5Writer& w, const std::string& prefix) const {}
+    virtual void restore_state(const io::H5Reader& r, const std::string& prefix) {}
+
     std::string part;      // part name (from the block)
     int block = -1;        // block index in the mesh
+};
+
+/// What a contact force provider reports for the run summary (ForceProvider::contact_report).
+struct ContactReport {
+    bool is_contact = false;              // false: not a contact (nothing to report)
+    double max_penetration = 0.0;         // deepest penetration over the run [m]
+    double max_penetration_fraction = 0.0;  // deepest as a fraction of the slave's local element size
+    double stored_energy = 0.0, dissipated_energy = 0.0;  // contact energy = stored + dissipated [J]
 };
 
 /// State-dependent forces from outside the element groups (contact, couplings): the solver calls
@@ -114,6 +146,17 @@ public:
     virtual void add_forces(double t, const NodalState& s, std::vector<Vec3>& force, std::vector<Vec3>& moment) = 0;
     /// A limit on the step (e.g. penalty springs); infinity when it imposes none.
     virtual double stable_time_step(const NodalState& s) const { return std::numeric_limits<double>::infinity(); }
+    /// Of the wall time spent in add_forces so far, the part spent searching (contact: candidate
+    /// lists); the solver's timing table reports the rest as contact forces.
+    virtual double search_seconds() const { return 0.0; }
+    /// Penetration and energy statistics for the run summary (contact interfaces).
+    virtual ContactReport contact_report() const { return {}; }
+    /// Restart: everything a later add_forces depends on (contact: friction springs and the segment
+    /// each node sticks to, candidate lists and rebuild counters, energies), under the HDF5 group
+    /// `prefix`; restore_state reads it into a provider built the same way and initialized, and
+    /// throws InputError when it does not fit (surface sizes).
+    virtual void save_state(io::H5Writer& w, const std::string& prefix) const {}
+    virtual void restore_state(const io::H5Reader& r, const std::string& prefix) {}
 };
 
 }  // namespace fem

@@ -190,25 +190,7 @@ GroupForceResult Hex8Group::internal_forces(NodalState& s, bool compute_dt) {
         }
         partial_[c] = p;
     };
-    // Colour by colour (implicit barrier after each `omp for`); inside a colour, dynamic scheduling
-    // of the chunks: a chunk's results do not depend on which thread computes it, so the bits are the
-    // same on any number of threads, and a thread that the shared machine preempts does not hold
-    // the others up within a colour.
-#pragma omp parallel if (n >= par::kParallelMin)
-    {
-        const int colours = static_cast<int>(colouring_.colours.size());
-        for (int k = 0; k < colours; ++k) {
-            const auto& list = colouring_.colours[k];
-            const int m = static_cast<int>(list.size());
-            if (k + 1 < colours) {
-#pragma omp for schedule(dynamic, 1)
-                for (int i = 0; i < m; ++i) run_chunk(list[i]);
-            } else {  // the end of the parallel region is the last barrier
-#pragma omp for schedule(dynamic, 1) nowait
-                for (int i = 0; i < m; ++i) run_chunk(list[i]);
-            }
-        }
-    }
+    colouring_.for_each_chunk(n >= par::kParallelMin, run_chunk);
     GroupForceResult out;
     int dt_k = -1, bad_k = -1;
     for (const auto& p : partial_) {  // fixed (chunk) order
@@ -248,7 +230,14 @@ BeamGroup::BeamGroup(const Mesh& mesh, int block, const ElasticMaterial& materia
             throw InputError(fmt::format("part '{}' block {} beam element {}: {}", part, block, e, err.what()));
         }
     }
+    packed_.resize((n + hex8::kLanes - 1) / hex8::kLanes);
+    for (int k = 0; k < static_cast<int>(packed_.size()) * hex8::kLanes; ++k) {
+        const auto& r = refs_[std::min(k, n - 1)];
+        beam::pack_lane(beam::pack(r, beam::Stiffness::of(r, options_.section, material_)), k % hex8::kLanes,
+                        packed_[k / hex8::kLanes]);
+    }
     mass_scale_.assign(n, 1.0);
+    sqrt_mass_scale_.assign(n, 1.0);
     stress_.assign(n, 0.0);
     wave_speed_ = bar_wave_speed(material_);
     for (const auto& r : refs_)
@@ -291,6 +280,11 @@ double BeamGroup::rotational_inertia_scaling(int e) const {
            beam::physical_rotational_inertia(options_.section, material_, L);
 }
 
+std::string BeamGroup::time_step_rule(int e) const {
+    const double axial = cfl::time_step(refs_.at(e).length, wave_speed_);
+    return transverse_dt_[e] < axial ? "bending: transverse bound 2/omega" : "axial: Table 2-1 L/c";
+}
+
 std::vector<double> BeamGroup::reference_time_steps() const {
     std::vector<double> dt;
     for (const auto& r : refs_)
@@ -301,36 +295,57 @@ std::vector<double> BeamGroup::reference_time_steps() const {
 void BeamGroup::set_mass_scaling(std::vector<double> factor) {
     if (static_cast<int>(factor.size()) != size()) throw InputError("mass scaling: one factor per element needed");
     mass_scale_ = std::move(factor);
+    for (int e = 0; e < size(); ++e) sqrt_mass_scale_[e] = std::sqrt(mass_scale_[e]);
 }
 
 GroupForceResult BeamGroup::internal_forces(NodalState& s, bool compute_dt) {
+    // Few elements (the wire of Table 2-8 has 100): one thread, in blocks of kLanes elements (one per
+    // lane, the one-element operations: the same bits), then the forces added element by element.
     GroupForceResult out;
-    beam::Result r;
-    for (int e = 0; e < size(); ++e) {  // few elements: serial, fixed order
-        const int a = conn_[e][0], b = conn_[e][1];
-        const int ra = s.rot_index[a], rb = s.rot_index[b];
-        const Vec3 d = s.x[b] - s.x[a];
-        if (!(d.squaredNorm() > 0.0) || !std::isfinite(d.squaredNorm())) {
-            if (out.bad_element < 0) out.bad_element = e;
-            continue;
+    constexpr int W = hex8::kLanes;
+    const int n = size();
+    beam::KernelResultBlock r;
+    alignas(hex8::kLanesAlign) hex8::Lanes x1[3], x2[3], R1[3][3], R2[3][3];  // see hex8::Lanes
+    for (int eb = 0; eb < n; eb += W) {
+        const int lanes = std::min(W, n - eb);
+        for (int l = 0; l < W; ++l) {
+            const auto& c = conn_[eb + std::min(l, lanes - 1)];  // spare lanes repeat the last element
+            const Vec3 &xa = s.x[c[0]], &xb = s.x[c[1]];
+            const Mat3 &Ra = s.rotation[s.rot_index[c[0]]], &Rb = s.rotation[s.rot_index[c[1]]];
+            for (int i = 0; i < 3; ++i) {
+                x1[i][l] = xa[i];
+                x2[i][l] = xb[i];
+                for (int j = 0; j < 3; ++j) {
+                    R1[i][j][l] = Ra(i, j);
+                    R2[i][j][l] = Rb(i, j);
+                }
+            }
         }
-        beam::internal_force(refs_[e], options_.section, material_, s.x[a], s.x[b], s.rotation[ra],
-                             s.rotation[rb], r);
-        s.f[a] += r.force[0];
-        s.f[b] += r.force[1];
-        s.moment[ra] += r.moment[0];
-        s.moment[rb] += r.moment[1];
-        out.internal_energy += r.strain_energy;
-        stress_[e] = r.max_stress;
-        out.max_von_mises = std::max(out.max_von_mises, r.max_stress);
-        if (compute_dt) {
-            // Table 2-1 beam row, L/c on the current length (fem::cfl::time_step), or the cached
-            // transverse bound of a stubby element (see beam_corotational.hpp).
-            const double dt = std::min(cfl::time_step(std::sqrt(d.squaredNorm()), wave_speed_), transverse_dt_[e]) *
-                              std::sqrt(mass_scale_[e]);
-            if (dt < out.dt_min) {
-                out.dt_min = dt;
-                out.dt_element = e;
+        beam::internal_force(packed_[eb / W], x1, x2, R1, R2, r);
+        for (int l = 0; l < lanes; ++l) {
+            const int e = eb + l;
+            const double length = r.length[l];
+            if (!(length > 0.0) || !std::isfinite(length) || !std::isfinite(r.strain_energy[l])) {
+                if (out.bad_element < 0) out.bad_element = e;
+                continue;
+            }
+            const int a = conn_[e][0], b = conn_[e][1];
+            const Vec3 f(r.force[0][l], r.force[1][l], r.force[2][l]);
+            s.f[a] += f;
+            s.f[b] -= f;
+            s.moment[s.rot_index[a]] += Vec3(r.moment[0][0][l], r.moment[0][1][l], r.moment[0][2][l]);
+            s.moment[s.rot_index[b]] += Vec3(r.moment[1][0][l], r.moment[1][1][l], r.moment[1][2][l]);
+            out.internal_energy += r.strain_energy[l];
+            stress_[e] = r.max_stress[l];
+            out.max_von_mises = std::max(out.max_von_mises, r.max_stress[l]);
+            if (compute_dt) {
+                // Table 2-1 beam row, L/c on the current length (fem::cfl::time_step), or the cached
+                // transverse bound of a stubby element (see beam_corotational.hpp).
+                const double dt = std::min(cfl::time_step(length, wave_speed_), transverse_dt_[e]) * sqrt_mass_scale_[e];
+                if (dt < out.dt_min) {
+                    out.dt_min = dt;
+                    out.dt_element = e;
+                }
             }
         }
     }

@@ -103,13 +103,18 @@ public:
     std::vector<double> element_stress() const override { return stress_; }
     /// Ratio of the scaled to the physical rotational inertia of element e (see beam_corotational.hpp).
     double rotational_inertia_scaling(int e) const;
+    /// "axial: Table 2-1 L/c" or "bending: transverse bound 2/omega" (stubby elements), on the
+    /// reference length.
+    std::string time_step_rule(int e) const override;
 
 private:
     ElasticMaterial material_;
     BeamOptions options_;
     std::vector<std::array<int, 2>> conn_;
     std::vector<beam::Reference> refs_;
-    std::vector<double> mass_scale_, stress_;
+    // The kernel's data, blocks of hex8::kLanes elements (the lanes past the end repeat the last one).
+    std::vector<beam::PackedBlock> packed_;
+    std::vector<double> mass_scale_, sqrt_mass_scale_, stress_;
     std::vector<double> transverse_dt_;  // per element, on the reference length
     double wave_speed_ = 0.0;            // bar wave speed sqrt(E / rho)
 };

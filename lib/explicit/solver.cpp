@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -11,6 +12,7 @@
 #include <set>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <nlohmann/json.hpp>
 #include <Spectra/SymEigsSolver.h>
 
@@ -46,6 +48,11 @@ void ExplicitModel::add_beams(std::string_view part, const ElasticMaterial& mate
     for (int b : mesh_.blocks_of_part(part)) groups_.push_back(std::make_unique<BeamGroup>(mesh_, b, material, options));
 }
 
+void ExplicitModel::add_shells(std::string_view part, const ElasticMaterial& material, const ShellOptions& options) {
+    for (int b : mesh_.blocks_of_part(part))
+        groups_.push_back(std::make_unique<ShellGroup>(mesh_, b, material, options));
+}
+
 void ExplicitModel::add_point_mass(const std::string& part, int node, double mass, double rotational_inertia) {
     check_nodes({node}, fmt::format("point mass of part '{}'", part).c_str());
     if (finalized_) throw InputError("add_point_mass after the solver was created");
@@ -76,7 +83,13 @@ void ExplicitModel::finalize() {
         groups_.push_back(std::make_unique<PointMassGroup>(part, d.first, d.second.first,
                                                            rot ? d.second.second : std::vector<double>{}));
     }
-    if (groups_.empty()) throw InputError("explicit model has no parts: add hex8, beams or point masses");
+    if (groups_.empty()) throw InputError("explicit model has no parts: add hex8, tetrahedra, shells, beams or point masses");
+    for (const auto& m : motions_)
+        if (!m.part.empty())
+            for (const auto& g : groups_)
+                if (g->part == m.part)
+                    throw InputError(fmt::format("part '{}' is rigid (add_rigid_part) and also has {} elements", m.part,
+                                                 g->kind()));
 }
 
 void ExplicitModel::fix(const std::vector<int>& nodes, Dofs dofs) {
@@ -97,11 +110,25 @@ void ExplicitModel::prescribe_displacement(const std::vector<int>& nodes, int do
     prescribed_.push_back({nodes, dof, value, std::move(curve), true});
 }
 
+void ExplicitModel::prescribe_motion(const std::vector<int>& nodes, RigidMotion motion) {
+    check_nodes(nodes, "prescribe_motion");
+    motions_.push_back({nodes, std::move(motion), {}, {}});
+}
+
 void ExplicitModel::prescribe_motion(const std::vector<int>& nodes,
                                      std::function<Vec3(const Vec3& X, double t)> position) {
     check_nodes(nodes, "prescribe_motion");
     if (!position) throw InputError("prescribe_motion: empty position function");
-    motions_.push_back({nodes, std::move(position)});
+    motions_.push_back({nodes, {}, std::move(position), {}});
+}
+
+void ExplicitModel::add_rigid_part(std::string_view part, RigidMotion motion) {
+    for (const auto& m : motions_)
+        if (m.part == part) throw InputError(fmt::format("add_rigid_part: part '{}' is already rigid", part));
+    std::set<int> nodes;
+    for (int b : mesh_.blocks_of_part(part))  // throws for an unknown part
+        for (int node : mesh_.blocks[b].connectivity) nodes.insert(node);
+    motions_.push_back({std::vector<int>(nodes.begin(), nodes.end()), std::move(motion), {}, std::string(part)});
 }
 
 ForceProvider& ExplicitModel::add_force_provider(std::unique_ptr<ForceProvider> provider) {
@@ -120,9 +147,52 @@ void ExplicitModel::add_nodal_moment(const std::vector<int>& nodes, const Vec3& 
     loads_.push_back({nodes, moment, std::move(curve), true});
 }
 
-void ExplicitModel::set_gravity(const Vec3& g, double t_on) {
+void ExplicitModel::set_gravity(const Vec3& g, double t_on) { set_gravity(g, Curve::step(t_on)); }
+
+void ExplicitModel::set_gravity(const Vec3& g, Curve curve) {
+    if (!g.allFinite()) throw InputError("set_gravity: the acceleration is not finite");
     gravity_ = g;
-    gravity_on_ = t_on;
+    gravity_curve_ = std::move(curve);
+}
+
+namespace {
+// The global axis (0, 1, 2) of an axis-aligned normal; InputError otherwise.
+int symmetry_axis(const Vec3& normal) {
+    const double len = normal.norm();
+    if (!(len > 0.0) || !normal.allFinite())
+        throw InputError("symmetry plane: the normal has zero length or is not finite");
+    int axis = 0;
+    normal.cwiseAbs().maxCoeff(&axis);
+    if (std::abs(normal[axis]) < len * (1.0 - 1e-12))
+        throw InputError(fmt::format("symmetry plane: normal ({}, {}, {}) is not along a global axis; only planes "
+                                     "normal to x, y or z can be expressed (fixed global DOFs)",
+                                     normal.x(), normal.y(), normal.z()));
+    return axis;
+}
+}  // namespace
+
+void ExplicitModel::add_symmetry_plane(const Vec3& normal, const std::vector<int>& nodes) {
+    const int a = symmetry_axis(normal);
+    check_nodes(nodes, "symmetry plane");
+    // The normal translation, and the rotations about the two in-plane axes.
+    const unsigned mask = (1u << a) | (1u << (3 + (a + 1) % 3)) | (1u << (3 + (a + 2) % 3));
+    for (int n : nodes) fixed_[n] |= mask;
+}
+
+std::vector<int> ExplicitModel::add_symmetry_plane(const Vec3& normal, const Vec3& point, double tolerance) {
+    const int a = symmetry_axis(normal);
+    if (tolerance <= 0.0) {
+        Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+        for (const Vec3& X : mesh_.nodes) lo = lo.cwiseMin(X), hi = hi.cwiseMax(X);
+        tolerance = 1e-9 * (hi - lo).norm();
+    }
+    const std::vector<int> nodes =
+        mesh_.select_nodes([&](const Vec3& X) { return std::abs(X[a] - point[a]) <= tolerance; });
+    if (nodes.empty())
+        throw InputError(fmt::format("symmetry plane {} = {}: no node within {:.3g} of it", "xyz"[a], point[a],
+                                     tolerance));
+    add_symmetry_plane(normal, nodes);
+    return nodes;
 }
 
 void ExplicitModel::set_mass_damping(std::string_view part, double alpha) {
@@ -162,8 +232,10 @@ std::string RunSummary::text() const {
                      threads);
     s += fmt::format("  mass {:.6g} kg, added by mass scaling {:.4g} kg ({:.3g} %)\n", mass, added_mass,
                      100.0 * added_mass_fraction);
-    s += fmt::format("  controlling element: part '{}' block {} {} element {}, critical dt {:.4g} s (Table 2-1)\n",
-                     controlling_part, controlling_block, controlling_kind, controlling_element, controlling_dt);
+    if (!rigid_parts.empty()) s += fmt::format("  rigid parts: {}\n", fmt::join(rigid_parts, ", "));
+    s += fmt::format("  controlling element: part '{}' block {} {} element {}, critical dt {:.4g} s ({})\n",
+                     controlling_part, controlling_block, controlling_kind, controlling_element, controlling_dt,
+                     controlling_rule);
     if (stability_factor < 1.0)
         s += fmt::format("  measured stability limit of the solid elements: 2/omega_max = {:.4f} x Table 2-1 (steps scaled)\n",
                          stability_factor);
@@ -175,15 +247,46 @@ std::string RunSummary::text() const {
                      energy.contact, energy.external, energy.initial);
     s += fmt::format("  energy balance error: final {:.3g} J, max |error| {:.3g} J = {:.3g} of {:.4g} J\n",
                      energy.balance_error, energy.max_abs_balance_error, energy.relative_error(), energy.reference);
+    s += fmt::format("  hourglass energy: max {:.4g} J = {:.3g} of the max internal energy {:.4g} J\n",
+                     energy.max_hourglass, energy.hourglass_fraction(), energy.max_internal);
     s += fmt::format("  wall time {:.3f} s, {:.4g} element-cycles/s\n", wall_s, element_cycles_per_s);
+    const auto row = [&](const char* what, double t) {
+        return fmt::format("    {:<24} {:10.3f} {:7.1f} %\n", what, t, wall_s > 0 ? 100.0 * t / wall_s : 0.0);
+    };
+    s += fmt::format("  timing                     wall [s]   share\n");
+    s += row("element forces", timing.elements);
+    s += row("contact search", timing.contact_search);
+    s += row("contact forces", timing.contact_forces);
+    s += row("constraints, rigid parts", timing.constraints);
+    s += row("node update", timing.update);
+    s += row("output", timing.output);
+    s += row("other", timing.other);
+    s += fmt::format("    (the timers' own cost: about {:.3g} s, {} clock reads)\n", timing.timer_overhead,
+                     timing.clock_reads);
+    for (const auto& c : interfaces)
+        s += fmt::format("  contact '{}': max penetration {:.4g} mm ({:.3g} of the slave element), energy {:.4g} J "
+                         "(stored {:.4g}, dissipated {:.4g}), search {:.3f} s, forces {:.3f} s\n",
+                         c.name, 1e3 * c.max_penetration, c.max_penetration_fraction, c.energy, c.stored_energy,
+                         c.dissipated_energy, c.search_s, c.forces_s);
     return s;
 }
 
 nlohmann::json RunSummary::to_json() const {
+    nlohmann::json interfaces_json = nlohmann::json::array();
+    for (const auto& c : interfaces)
+        interfaces_json.push_back({{"name", c.name},
+                                   {"max_penetration_m", c.max_penetration},
+                                   {"max_penetration_fraction", c.max_penetration_fraction},
+                                   {"energy_J", c.energy},
+                                   {"stored_energy_J", c.stored_energy},
+                                   {"dissipated_energy_J", c.dissipated_energy},
+                                   {"search_s", c.search_s},
+                                   {"forces_s", c.forces_s}});
     return {{"name", name},
             {"nodes", nodes},
             {"rotational_nodes", rotational_nodes},
             {"elements", elements},
+            {"rigid_parts", rigid_parts},
             {"threads", threads},
             {"steps", steps},
             {"end_time_s", end_time},
@@ -194,6 +297,7 @@ nlohmann::json RunSummary::to_json() const {
              fmt::format("part '{}' block {} {} element {}", controlling_part, controlling_block, controlling_kind,
                          controlling_element)},
             {"controlling_dt_s", controlling_dt},
+            {"controlling_rule", controlling_rule},
             {"stability_factor", stability_factor},
             {"mass_kg", mass},
             {"added_mass_kg", added_mass},
@@ -206,8 +310,20 @@ nlohmann::json RunSummary::to_json() const {
             {"external_work_J", energy.external},
             {"energy_contact_J", energy.contact},
             {"energy_balance_relative_error", energy.relative_error()},
+            {"hourglass_fraction_of_internal", energy.hourglass_fraction()},
             {"wall_s", wall_s},
-            {"element_cycles_per_s", element_cycles_per_s}};
+            {"element_cycles_per_s", element_cycles_per_s},
+            {"timing_s",
+             {{"elements", timing.elements},
+              {"contact_search", timing.contact_search},
+              {"contact_forces", timing.contact_forces},
+              {"constraints", timing.constraints},
+              {"update", timing.update},
+              {"output", timing.output},
+              {"other", timing.other},
+              {"timers_own_cost", timing.timer_overhead}}},
+            {"contact_share", wall_s > 0 ? (timing.contact_search + timing.contact_forces) / wall_s : 0.0},
+            {"contact_interfaces", interfaces_json}};
 }
 
 // ===================================================================================================
@@ -220,8 +336,13 @@ ExplicitSolver::ExplicitSolver(ExplicitModel& model, ExplicitOptions options)
     if (!(opt_.dt_scale > 0.0 && opt_.dt_scale <= 1.0))
         throw InputError(fmt::format("explicit run '{}': dt_scale {} must be in (0, 1]", opt_.name, opt_.dt_scale));
     if (opt_.dt_interval < 1) throw InputError("dt_interval must be >= 1");
-    if (opt_.fixed_dt < 0 || opt_.mass_scaling_dt < 0 || opt_.history_interval < 0 || opt_.vtu_interval < 0)
+    if (opt_.fixed_dt < 0 || opt_.mass_scaling_dt < 0 || opt_.history_interval < 0 || opt_.vtu_interval < 0 ||
+        opt_.restart_interval < 0)
         throw InputError(fmt::format("explicit run '{}': negative fixed_dt, mass_scaling_dt or interval", opt_.name));
+    if ((opt_.restart_interval > 0 || !opt_.restart_times.empty()) && opt_.restart_dir.empty())
+        throw InputError(fmt::format("explicit run '{}': restart dumps asked for (restart_times or restart_interval) "
+                                     "but no restart_dir",
+                                     opt_.name));
     initialize();
 }
 
@@ -258,7 +379,7 @@ void ExplicitSolver::initialize() {
     s_.rotation.assign(nr, Mat3::Identity());
     for (const auto& [node, w] : model_.initial_angular_velocity()) {
         if (s_.rot_index[node] < 0)
-            throw InputError(fmt::format("initial angular velocity on node {}, which has no rotations (no beam)", node));
+            throw InputError(fmt::format("initial angular velocity on node {}, which has no rotations (no beam or shell)", node));
         s_.omega[s_.rot_index[node]] = w;
     }
 
@@ -290,6 +411,7 @@ void ExplicitSolver::initialize() {
                 }
     }
     for (const auto& g : groups) {
+        g->initialize(s_);  // history variables (shell stresses) start from this state
         summary_.added_mass += g->add_lumped_mass(s_);
         summary_.mass += g->mass();
         summary_.elements += g->size();
@@ -325,19 +447,35 @@ void ExplicitSolver::initialize() {
                 const double nan = std::numeric_limits<double>::quiet_NaN();
                 target_.push_back({nan, nan, nan});
             }
-    for (const auto& mo : model_.motions())
-        for (int node : mo.nodes)
+    // A node follows one motion at most; the motion overrides fix() on its translations.
+    std::vector<int> motion_of(n, -1);
+    for (int k = 0; k < static_cast<int>(model_.motions().size()); ++k) {
+        const auto& mo = model_.motions()[k];
+        for (int node : mo.nodes) {
+            if (motion_of[node] >= 0 && motion_of[node] != k) {
+                auto what = [&](int m) {
+                    const auto& p = model_.motions()[m].part;
+                    return p.empty() ? std::string("a prescribed motion") : fmt::format("rigid part '{}'", p);
+                };
+                throw InputError(fmt::format("node {} follows two motions: {} and {}", node, what(motion_of[node]),
+                                             what(k)));
+            }
+            motion_of[node] = k;
+            fixed_[node] &= ~7u;
             if (target_index_[node] < 0) {
                 target_index_[node] = static_cast<int>(target_.size());
                 const double nan = std::numeric_limits<double>::quiet_NaN();
                 target_.push_back({nan, nan, nan});
             }
+        }
+        if (!mo.part.empty()) summary_.rigid_parts.push_back(mo.part);
+    }
     for (const auto& l : model_.loads()) {
         has_loads_ = true;
         if (l.moment)
             for (int node : l.nodes)
                 if (s_.rot_index[node] < 0)
-                    throw InputError(fmt::format("nodal moment on node {}, which has no rotations (no beam)", node));
+                    throw InputError(fmt::format("nodal moment on node {}, which has no rotations (no beam or shell)", node));
     }
     if (model_.gravity().squaredNorm() > 0) has_loads_ = true;
     fext_.assign(n, Vec3::Zero());
@@ -368,9 +506,25 @@ void ExplicitSolver::initialize() {
     }
     if (!opt_.pvd_path.empty()) pvd_ = std::make_unique<io::PvdSeries>(opt_.pvd_path);
 
-    // Forces and critical step at t = 0.
     t_ = 0.0;
     step_ = 0;
+    if (!opt_.restart_from.empty()) {
+        restore(opt_.restart_from);
+    } else {
+        start_fresh(solid_table_dt);
+    }
+    // Restart dumps still to come.
+    restart_times_.clear();
+    for (double t : opt_.restart_times)
+        if (t > t_) restart_times_.push_back(t);
+    std::sort(restart_times_.begin(), restart_times_.end());
+    next_restart_ = t_ + opt_.restart_interval;
+}
+
+void ExplicitSolver::start_fresh(double solid_table_dt) {
+    const int n = s_.node_count(), nr = s_.rotational_count();
+    auto& groups = model_.groups();
+    // Forces and critical step at t = 0.
     // One stability factor for all solid groups (hexahedra and tetrahedra alike): the measured
     // omega_max is that of the assembled solid model (shared nodes couple the groups' frequencies, so
     // only the assembled measurement is exact; per-group measurements are bounds only with each
@@ -522,6 +676,7 @@ void ExplicitSolver::compute_forces(bool compute_dt) {
         for (int i = 0; i < n; ++i) s_.fv[i].setZero();
     }
     e_int_ = e_hg_ = visc_power_ = 0.0;
+    group_vm_.resize(model_.groups().size());
     double dt = std::numeric_limits<double>::infinity();
     int dg = -1, de = -1;
     auto& groups = model_.groups();
@@ -536,6 +691,7 @@ void ExplicitSolver::compute_forces(bool compute_dt) {
         if (!(book_viscous_ && groups[g]->adds_viscous_forces())) visc_power_ += r.viscous_power;
         double& vm = max_vm_[groups[g]->part];
         vm = std::max(vm, r.max_von_mises);
+        group_vm_[g] = r.max_von_mises;
         if (compute_dt && dt_factor_[g] * r.dt_min < dt) {
             dt = dt_factor_[g] * r.dt_min;
             dg = g;
@@ -567,8 +723,13 @@ void ExplicitSolver::external_forces(double t) {
                 fext_[node] += v;
         }
     }
-    if (model_.gravity().squaredNorm() > 0 && t >= model_.gravity_on())
-        for (int i = 0; i < s_.node_count(); ++i) fext_[i] += s_.mass[i] * model_.gravity();
+    if (model_.gravity().squaredNorm() > 0) {
+        const double c = model_.gravity_curve()(t);
+        if (c != 0.0) {
+            const Vec3 g = model_.gravity() * c;
+            for (int i = 0; i < s_.node_count(); ++i) fext_[i] += s_.mass[i] * g;
+        }
+    }
 }
 
 void ExplicitSolver::unstable(const std::string& why) {
@@ -586,8 +747,21 @@ void ExplicitSolver::unstable(const std::string& why) {
             worst = i;
         }
     }
+    // The part and element around that node (its first element in the mesh), so that the message
+    // names the place a user can look at, not only a node number.
+    std::string around = "in no element";
+    const Mesh& mesh = model_.mesh();
+    for (int b = 0; worst >= 0 && b < static_cast<int>(mesh.blocks.size()) && around == "in no element"; ++b)
+        for (int e = 0; e < mesh.blocks[b].size(); ++e) {
+            const auto conn = mesh.blocks[b].element(e);
+            if (std::find(conn.begin(), conn.end(), worst) != conn.end()) {
+                around = fmt::format("in part '{}' ({} element {} of block {})", mesh.blocks[b].part,
+                                     to_string(mesh.blocks[b].shape), e, b);
+                break;
+            }
+        }
     const std::string where =
-        worst >= 0 ? fmt::format("node {} (reference position {:.4g}, {:.4g}, {:.4g})", worst, s_.X[worst].x(),
+        worst >= 0 ? fmt::format("node {} {} (reference position {:.4g}, {:.4g}, {:.4g})", worst, around, s_.X[worst].x(),
                                  s_.X[worst].y(), s_.X[worst].z())
                    : "no node";
     throw SolverError(fmt::format(
@@ -618,7 +792,26 @@ void ExplicitSolver::record(bool force) {
         history_.max_von_mises[part].push_back(vm);
         vm = 0.0;
     }
-    if (observer) observer(*this);
+    if (observer && opt_.observer_interval < 0.0) {
+        last_observer_ = t_;
+        observer(*this);
+    }
+}
+
+void ExplicitSolver::notify_observer(bool force) {
+    if (!observer || opt_.observer_interval < 0.0) return;
+    if (!force && t_ + 1e-12 * opt_.end_time < next_observer_) return;
+    next_observer_ = t_ + opt_.observer_interval;
+    last_observer_ = t_;
+    observer(*this);
+}
+
+double ExplicitSolver::max_von_mises(std::string_view part) const {
+    double vm = 0.0;
+    const auto& groups = model_.groups();
+    for (std::size_t g = 0; g < groups.size() && g < group_vm_.size(); ++g)
+        if (groups[g]->part == part) vm = std::max(vm, group_vm_[g]);
+    return vm;
 }
 
 void ExplicitSolver::write_vtu(double t) {
@@ -641,54 +834,433 @@ void ExplicitSolver::write_vtu(double t) {
     io::Field vm{"von_mises", 1, {}};
     for (const auto& b : per_block) vm.values.insert(vm.values.end(), b.begin(), b.end());
     data.cell_fields = {std::move(vm)};
+    // The groups' further fields (shells: von Mises at the bottom, mid and top surfaces), zero on
+    // the blocks of groups that do not have them.
+    std::map<std::string, std::vector<std::vector<double>>> extra;
+    for (const auto& g : model_.groups())
+        for (auto& [name, values] : g->cell_fields()) {
+            auto& blocks = extra[name];
+            if (blocks.empty())
+                for (std::size_t b = 0; b < mesh.blocks.size(); ++b) blocks.emplace_back(mesh.blocks[b].size(), 0.0);
+            if (g->block >= 0) blocks[g->block] = std::move(values);
+        }
+    for (auto& [name, blocks] : extra) {
+        io::Field f{name, 1, {}};
+        for (const auto& b : blocks) f.values.insert(f.values.end(), b.begin(), b.end());
+        data.cell_fields.push_back(std::move(f));
+    }
     pvd_->add(t, mesh, data, s_.x);
 }
 
+// ===================================================================================================
+// Restart (ExplicitOptions::restart_*): the complete state a later cycle depends on, to HDF5 and back
+// ===================================================================================================
+
+namespace {
+constexpr const char* kRestartFormat = "fem explicit restart 1";
+
+std::string safe_file_name(std::string_view name) {
+    std::string s(name);
+    for (char& c : s)
+        if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-' && c != '_' && c != '.') c = '_';
+    return s.empty() ? std::string("explicit") : s;
+}
+
+Eigen::MatrixXd vec3_rows(const std::vector<Vec3>& v) {
+    Eigen::MatrixXd m(v.size(), 3);
+    for (std::size_t i = 0; i < v.size(); ++i) m.row(i) = v[i].transpose();
+    return m;
+}
+
+std::string joined(const std::vector<std::string>& items) {
+    std::string s;
+    for (std::size_t i = 0; i < items.size(); ++i) s += (i ? "\n" : "") + items[i];
+    return s;
+}
+
+std::vector<std::string> split_lines(const std::string& s) {
+    std::vector<std::string> out;
+    if (s.empty()) return out;
+    std::size_t a = 0;
+    while (true) {
+        const std::size_t b = s.find('\n', a);
+        out.push_back(s.substr(a, b == std::string::npos ? std::string::npos : b - a));
+        if (b == std::string::npos) break;
+        a = b + 1;
+    }
+    return out;
+}
+
+// One line per group: what must match between the dumping and the restarting model.
+std::vector<std::string> group_signature(const ExplicitModel& model) {
+    std::vector<std::string> g;
+    for (const auto& grp : model.groups())
+        g.push_back(fmt::format("part '{}' block {} {} with {} elements", grp->part, grp->block, grp->kind(), grp->size()));
+    return g;
+}
+
+std::vector<std::string> provider_names(ExplicitModel& model) {
+    std::vector<std::string> p;
+    for (const auto& fp : model.force_providers()) p.push_back(fp->name());
+    return p;
+}
+}  // namespace
+
+std::filesystem::path ExplicitSolver::latest_restart(const std::filesystem::path& dir, std::string_view name) {
+    const std::string prefix = safe_file_name(name) + "-restart-";
+    std::filesystem::path best;
+    long best_step = -1;
+    std::error_code ec;
+    for (const auto& e : std::filesystem::directory_iterator(dir, ec)) {
+        const std::string f = e.path().filename().string();
+        if (f.rfind(prefix, 0) != 0 || e.path().extension() != ".h5") continue;
+        const std::string digits = f.substr(prefix.size(), f.size() - prefix.size() - 3);
+        if (digits.empty() || !std::all_of(digits.begin(), digits.end(), [](char c) { return std::isdigit(c); })) continue;
+        const long step = std::stol(digits);
+        if (step > best_step) best_step = step, best = e.path();
+    }
+    if (best_step < 0)
+        throw InputError(fmt::format("no restart file of run '{}' ({}<step>.h5) in '{}'", name, prefix, dir.string()));
+    return best;
+}
+
+void ExplicitSolver::restart_dumps() {
+    const double tol = 1e-12 * opt_.end_time;
+    bool due = false;
+    std::size_t passed = 0;
+    while (passed < restart_times_.size() && t_ + tol >= restart_times_[passed]) ++passed;
+    if (passed > 0) {
+        restart_times_.erase(restart_times_.begin(), restart_times_.begin() + static_cast<long>(passed));
+        due = true;
+    }
+    if (opt_.restart_interval > 0.0 && t_ + tol >= next_restart_) {
+        next_restart_ = t_ + opt_.restart_interval;
+        due = true;
+    }
+    if (!due) return;
+    const auto path = opt_.restart_dir / fmt::format("{}-restart-{:09d}.h5", safe_file_name(opt_.name), step_);
+    write_restart(path);
+    restart_files_.push_back(path);
+}
+
+void ExplicitSolver::write_restart(const std::filesystem::path& path) const {
+    io::H5Writer w(path);
+    w.attribute("/", "format", kRestartFormat);
+    w.attribute("/", "run", opt_.name);
+    w.attribute("/", "time", t_);
+    w.attribute("/", "step", static_cast<double>(step_));
+    // What the restarting model must match.
+    w.attribute("/", "nodes", static_cast<double>(s_.node_count()));
+    w.attribute("/", "rotational_nodes", static_cast<double>(s_.rotational_count()));
+    w.attribute("/", "groups", joined(group_signature(model_)));
+    w.attribute("/", "force_providers", joined(provider_names(model_)));
+    // Nodal state at t(n): x(n), v(n-1/2), the internal forces at x(n) (not recomputed on restart:
+    // a group with history variables must not be evaluated twice), rotations.
+    w.write("state/x", vec3_rows(s_.x));
+    w.write("state/v", vec3_rows(s_.v));
+    w.write("state/f", vec3_rows(s_.f));
+    if (!s_.fv.empty()) w.write("state/fv", vec3_rows(s_.fv));
+    w.write("state/omega", vec3_rows(s_.omega));
+    w.write("state/moment", vec3_rows(s_.moment));
+    Eigen::MatrixXd R(s_.rotational_count(), 9);
+    for (int k = 0; k < s_.rotational_count(); ++k)
+        for (int a = 0; a < 9; ++a) R(k, a) = s_.rotation[k](a / 3, a % 3);
+    w.write("state/rotation", R);
+    // Solver scalars: time and step control, energy accumulators, summary statistics, schedules.
+    const EnergySummary& E = summary_.energy;
+    const std::vector<std::pair<const char*, double>> scalars = {
+        {"t", t_}, {"step", static_cast<double>(step_)}, {"dt_half", dt_half_}, {"dt_prev", dt_prev_},
+        {"dt_crit", dt_crit_}, {"dt_crit_unscaled", dt_crit_unscaled_}, {"dt_group", static_cast<double>(dt_group_)},
+        {"dt_element", static_cast<double>(dt_element_)}, {"stability_factor", stability_factor_},
+        {"omega_max", omega_max_}, {"ctrl_min", ctrl_min_}, {"ctrl_group", static_cast<double>(ctrl_group_)},
+        {"ctrl_element", static_cast<double>(ctrl_element_)}, {"e_int", e_int_}, {"e_hg", e_hg_},
+        {"visc_power", visc_power_}, {"e_kin", e_kin_}, {"e_damp", e_damp_}, {"e_visc", e_visc_}, {"w_ext", w_ext_},
+        {"w_abs", w_abs_}, {"w_prov", w_prov_}, {"e0", e0_}, {"input_scale", input_scale_},
+        {"next_history", next_history_}, {"next_vtu", next_vtu_}, {"next_observer", next_observer_},
+        {"last_observer", last_observer_}, {"first_dt", summary_.first_dt}, {"min_dt", summary_.min_dt},
+        {"max_dt", summary_.max_dt}, {"controlling_dt", summary_.controlling_dt}, {"E_kinetic", E.kinetic},
+        {"E_internal", E.internal}, {"E_hourglass", E.hourglass}, {"E_damping", E.damping}, {"E_viscous", E.viscous},
+        {"E_external", E.external}, {"E_contact", E.contact}, {"E_initial", E.initial},
+        {"E_balance_error", E.balance_error}, {"E_max_abs_balance_error", E.max_abs_balance_error},
+        {"E_reference", E.reference}};
+    for (const auto& [name, value] : scalars) w.write(std::string("solver/") + name, std::vector<double>{value});
+    std::vector<std::string> vm_parts;
+    std::vector<double> vm_values;
+    for (const auto& [part, vm] : max_vm_) vm_parts.push_back(part), vm_values.push_back(vm);
+    w.write("solver/max_vm", vm_values);
+    w.attribute("/", "max_vm_parts", joined(vm_parts));
+    w.write("solver/group_vm", group_vm_);
+    // Histories so far (the restarted run's outputs then cover the whole run).
+    const History& h = history_;
+    w.write("history/time", h.time);
+    std::vector<std::string> names;
+    std::vector<long long> ids;
+    for (std::size_t k = 0; k < h.nodes.size(); ++k) {
+        names.push_back(h.nodes[k].name);
+        ids.push_back(h.nodes[k].node);
+        w.write(fmt::format("history/node{}/displacement", k), vec3_rows(h.nodes[k].displacement));
+        w.write(fmt::format("history/node{}/velocity", k), vec3_rows(h.nodes[k].velocity));
+    }
+    w.write_ints("history/node_ids", ids);
+    w.attribute("/", "history_node_names", joined(names));
+    const std::vector<std::pair<const char*, const std::vector<double>*>> series = {
+        {"kinetic", &h.kinetic}, {"internal", &h.internal}, {"hourglass", &h.hourglass}, {"damping", &h.damping},
+        {"viscous", &h.viscous}, {"external", &h.external}, {"contact", &h.contact}, {"balance", &h.balance}};
+    for (const auto& [name, v] : series) w.write(std::string("history/") + name, *v);
+    std::vector<std::string> hv_parts;
+    int k = 0;
+    for (const auto& [part, v] : h.max_von_mises) {
+        hv_parts.push_back(part);
+        w.write(fmt::format("history/max_von_mises{}", k++), v);
+    }
+    w.attribute("/", "history_von_mises_parts", joined(hv_parts));
+    // The VTU series so far.
+    std::vector<double> pvd_t;
+    std::vector<std::string> pvd_f;
+    if (pvd_)
+        for (const auto& [t, f] : pvd_->entries()) pvd_t.push_back(t), pvd_f.push_back(f);
+    w.write("pvd/time", pvd_t);
+    w.attribute("/", "pvd_path", opt_.pvd_path.string());
+    w.attribute("/", "pvd_files", joined(pvd_f));
+    // The groups' and force providers' own state.
+    for (std::size_t g = 0; g < model_.groups().size(); ++g) model_.groups()[g]->save_state(w, fmt::format("groups/{}/", g));
+    for (std::size_t p = 0; p < model_.force_providers().size(); ++p)
+        model_.force_providers()[p]->save_state(w, fmt::format("providers/{}/", p));
+    w.commit();
+}
+
+void ExplicitSolver::restore(const std::filesystem::path& path) {
+    const io::H5Reader r(path);
+    const std::string file = fmt::format("restart file '{}'", path.string());
+    if (r.attribute_string("/", "format") != kRestartFormat)
+        throw InputError(fmt::format("{} is not an explicit solver restart file ({})", file, kRestartFormat));
+    // The model must be the one that wrote it (loads, motions, options may differ).
+    const auto mismatch = [&](const std::string& what, const std::string& in_file, const std::string& in_model) {
+        return InputError(fmt::format("{} does not match the model of run '{}': {} is {} in the file but {} in the "
+                                      "model",
+                                      file, opt_.name, what, in_file, in_model));
+    };
+    const auto n_file = static_cast<int>(r.attribute_number("/", "nodes"));
+    if (n_file != s_.node_count())
+        throw mismatch("the node count", std::to_string(n_file), std::to_string(s_.node_count()));
+    const auto nr_file = static_cast<int>(r.attribute_number("/", "rotational_nodes"));
+    if (nr_file != s_.rotational_count())
+        throw mismatch("the number of nodes with rotations", std::to_string(nr_file), std::to_string(s_.rotational_count()));
+    const auto groups_file = split_lines(r.attribute_string("/", "groups")), groups_model = group_signature(model_);
+    for (std::size_t g = 0; g < std::max(groups_file.size(), groups_model.size()); ++g) {
+        const std::string a = g < groups_file.size() ? groups_file[g] : "missing";
+        const std::string b = g < groups_model.size() ? groups_model[g] : "missing";
+        if (a != b) throw mismatch(fmt::format("element group {}", g), a, b);
+    }
+    const auto prov_file = split_lines(r.attribute_string("/", "force_providers")), prov_model = provider_names(model_);
+    for (std::size_t p = 0; p < std::max(prov_file.size(), prov_model.size()); ++p) {
+        const std::string a = p < prov_file.size() ? "'" + prov_file[p] + "'" : "missing";
+        const std::string b = p < prov_model.size() ? "'" + prov_model[p] + "'" : "missing";
+        if (a != b) throw mismatch(fmt::format("contact interface (force provider) {}", p), a, b);
+    }
+    // Nodal state.
+    const auto read_vec3 = [&](const std::string& name, std::vector<Vec3>& v, int rows) {
+        const Eigen::MatrixXd m = r.read_matrix(name);
+        if (m.rows() != rows || (rows > 0 && m.cols() != 3))
+            throw InputError(fmt::format("{}: dataset '{}' has {} rows, expected {}", file, name, m.rows(), rows));
+        v.resize(rows);
+        for (int i = 0; i < rows; ++i) v[i] = m.row(i).transpose();
+    };
+    const int n = s_.node_count(), nr = s_.rotational_count();
+    read_vec3("state/x", s_.x, n);
+    read_vec3("state/v", s_.v, n);
+    read_vec3("state/f", s_.f, n);
+    if (!s_.fv.empty()) {
+        if (!r.has("state/fv"))
+            throw InputError(fmt::format("{} has no viscous forces (state/fv), which this model books (a group with "
+                                         "bulk viscosity or beta damping, exact_viscous_energy)",
+                                         file));
+        read_vec3("state/fv", s_.fv, n);
+    }
+    read_vec3("state/omega", s_.omega, nr);
+    read_vec3("state/moment", s_.moment, nr);
+    const Eigen::MatrixXd R = r.read_matrix("state/rotation");
+    for (int k = 0; k < nr; ++k)
+        for (int a = 0; a < 9; ++a) s_.rotation[k](a / 3, a % 3) = R(k, a);
+    // Scalars.
+    const auto get = [&](const char* name) {
+        const std::vector<double> v = r.read(std::string("solver/") + name);
+        if (v.size() != 1) throw InputError(fmt::format("{}: solver/{} is not a number", file, name));
+        return v[0];
+    };
+    t_ = get("t");
+    step_ = static_cast<long>(get("step"));
+    dt_half_ = get("dt_half");
+    dt_prev_ = get("dt_prev");
+    dt_crit_ = get("dt_crit");
+    dt_crit_unscaled_ = get("dt_crit_unscaled");
+    dt_group_ = static_cast<int>(get("dt_group"));
+    dt_element_ = static_cast<int>(get("dt_element"));
+    stability_factor_ = get("stability_factor");
+    omega_max_ = get("omega_max");
+    ctrl_min_ = get("ctrl_min");
+    ctrl_group_ = static_cast<int>(get("ctrl_group"));
+    ctrl_element_ = static_cast<int>(get("ctrl_element"));
+    e_int_ = get("e_int");
+    e_hg_ = get("e_hg");
+    visc_power_ = get("visc_power");
+    e_kin_ = get("e_kin");
+    e_damp_ = get("e_damp");
+    e_visc_ = get("e_visc");
+    w_ext_ = get("w_ext");
+    w_abs_ = get("w_abs");
+    w_prov_ = get("w_prov");
+    e0_ = get("e0");
+    input_scale_ = get("input_scale");
+    next_history_ = get("next_history");
+    next_vtu_ = get("next_vtu");
+    next_observer_ = get("next_observer");
+    last_observer_ = get("last_observer");
+    summary_.first_dt = get("first_dt");
+    summary_.min_dt = get("min_dt");
+    summary_.max_dt = get("max_dt");
+    summary_.controlling_dt = get("controlling_dt");
+    EnergySummary& E = summary_.energy;
+    E.kinetic = get("E_kinetic");
+    E.internal = get("E_internal");
+    E.hourglass = get("E_hourglass");
+    E.damping = get("E_damping");
+    E.viscous = get("E_viscous");
+    E.external = get("E_external");
+    E.contact = get("E_contact");
+    E.initial = get("E_initial");
+    E.balance_error = get("E_balance_error");
+    E.max_abs_balance_error = get("E_max_abs_balance_error");
+    E.reference = get("E_reference");
+    // The measured stability factor carries over (the start-up measurement is not repeated).
+    auto& groups = model_.groups();
+    for (std::size_t gi = 0; gi < groups.size(); ++gi)
+        if (solid_[gi] && !groups[gi]->set_stability_factor(stability_factor_)) dt_factor_[gi] = stability_factor_;
+    summary_.stability_factor = stability_factor_;
+    max_vm_.clear();
+    const auto vm_parts = split_lines(r.attribute_string("/", "max_vm_parts"));
+    const auto vm_values = r.read("solver/max_vm");
+    for (std::size_t i = 0; i < vm_parts.size() && i < vm_values.size(); ++i) max_vm_[vm_parts[i]] = vm_values[i];
+    group_vm_ = r.read("solver/group_vm");
+    group_vm_.resize(groups.size());
+    // Histories: continued when this run records the same nodes; otherwise a new history from here.
+    std::vector<std::string> names;
+    std::vector<long long> ids;
+    for (const auto& h : history_.nodes) names.push_back(h.name), ids.push_back(h.node);
+    if (split_lines(r.attribute_string("/", "history_node_names")) == names && r.read_ints("history/node_ids") == ids) {
+        History& h = history_;
+        h.time = r.read("history/time");
+        const int samples = static_cast<int>(h.time.size());
+        for (std::size_t k = 0; k < h.nodes.size(); ++k) {
+            read_vec3(fmt::format("history/node{}/displacement", k), h.nodes[k].displacement, samples);
+            read_vec3(fmt::format("history/node{}/velocity", k), h.nodes[k].velocity, samples);
+        }
+        const std::vector<std::pair<const char*, std::vector<double>*>> series = {
+            {"kinetic", &h.kinetic}, {"internal", &h.internal}, {"hourglass", &h.hourglass}, {"damping", &h.damping},
+            {"viscous", &h.viscous}, {"external", &h.external}, {"contact", &h.contact}, {"balance", &h.balance}};
+        for (const auto& [name, v] : series) *v = r.read(std::string("history/") + name);
+        int k = 0;
+        for (const auto& part : split_lines(r.attribute_string("/", "history_von_mises_parts")))
+            h.max_von_mises[part] = r.read(fmt::format("history/max_von_mises{}", k++));
+    } else {
+        next_history_ = t_;  // a new history, from the restart on
+    }
+    // The VTU series continues when it is the same file.
+    if (pvd_) {
+        if (r.attribute_string("/", "pvd_path") == opt_.pvd_path.string()) {
+            const auto times = r.read("pvd/time");
+            const auto files = split_lines(r.attribute_string("/", "pvd_files"));
+            std::vector<std::pair<double, std::string>> entries;
+            for (std::size_t i = 0; i < times.size() && i < files.size(); ++i) entries.push_back({times[i], files[i]});
+            pvd_->resume(std::move(entries));
+        } else {
+            next_vtu_ = t_;
+        }
+    }
+    // The groups' and providers' own state (after the providers' initialize).
+    for (std::size_t g = 0; g < groups.size(); ++g) groups[g]->restore_state(r, fmt::format("groups/{}/", g));
+    for (std::size_t p = 0; p < model_.force_providers().size(); ++p)
+        model_.force_providers()[p]->restore_state(r, fmt::format("providers/{}/", p));
+    restarted_ = true;
+}
+
+double ExplicitSolver::choose_dt() const {
+    // Force providers' springs (contact penalties) act in parallel with the elements, so
+    // omega_max^2 <= omega_elements^2 + sum omega_p^2 (Weyl's inequality): the stable steps
+    // combine as 1/dt^2 = 1/dt_e^2 + sum 1/dt_p^2. Taking only the smallest step is not enough:
+    // two bars in penalty contact went unstable at 0.9 x min(dt_e, dt_p) (tests/contact).
+    double inv2 = 1.0 / (dt_crit_ * dt_crit_);
+    for (const auto& p : model_.force_providers()) {
+        const double dp = p->stable_time_step(s_);
+        if (std::isfinite(dp) && dp > 0.0) inv2 += 1.0 / (dp * dp);
+    }
+    double dt = opt_.dt_scale / std::sqrt(inv2);
+    if (opt_.fixed_dt > 0.0) {
+        dt = opt_.fixed_dt;
+        if (dt > dt_crit_ && !opt_.allow_unstable_fixed_dt)
+            throw SolverError(fmt::format(
+                "explicit run '{}' at step {}, t = {:.6g} s: the fixed time step {:.4g} s is now above the critical "
+                "step {:.4g} s of {} (the element deformed)",
+                opt_.name, step_, t_, dt, dt_crit_, element_name(dt_group_, dt_element_)));
+    }
+    return dt;
+}
+
 RunSummary ExplicitSolver::run() {
-    const auto wall0 = std::chrono::steady_clock::now();
+    using Clock = std::chrono::steady_clock;
+    const auto wall0 = Clock::now();
     const bool progress = opt_.progress && isatty(STDERR_FILENO);
     auto last_progress = wall0;
     const int n = s_.node_count(), nr = s_.rotational_count();
-    const long cycles0 = element_cycles_;
+    const long cycles0 = element_cycles_, step0 = step_;
 
-    auto choose_dt = [&]() {
-        // Force providers' springs (contact penalties) act in parallel with the elements, so
-        // omega_max^2 <= omega_elements^2 + sum omega_p^2 (Weyl's inequality): the stable steps
-        // combine as 1/dt^2 = 1/dt_e^2 + sum 1/dt_p^2. Taking only the smallest step is not enough:
-        // two bars in penalty contact went unstable at 0.9 x min(dt_e, dt_p) (tests/contact).
-        double inv2 = 1.0 / (dt_crit_ * dt_crit_);
-        for (const auto& p : model_.force_providers()) {
-            const double dp = p->stable_time_step(s_);
-            if (std::isfinite(dp) && dp > 0.0) inv2 += 1.0 / (dp * dp);
-        }
-        double dt = opt_.dt_scale / std::sqrt(inv2);
-        if (opt_.fixed_dt > 0.0) {
-            dt = opt_.fixed_dt;
-            if (dt > dt_crit_ && !opt_.allow_unstable_fixed_dt)
-                throw SolverError(fmt::format(
-                    "explicit run '{}' at step {}, t = {:.6g} s: the fixed time step {:.4g} s is now above the critical "
-                    "step {:.4g} s of {} (the element deformed)",
-                    opt_.name, step_, t_, dt, dt_crit_, element_name(dt_group_, dt_element_)));
-        }
-        return dt;
+    // Timing (TimingSummary): lap(bucket) books the time since the last lap; a few clock reads per
+    // cycle. The cost of one read, measured here, gives the timers' own cost in the summary.
+    TimingSummary& T = timing_;
+    T = TimingSummary{};
+    {
+        const auto c0 = Clock::now();
+        for (int i = 0; i < 256; ++i) (void)Clock::now();
+        T.timer_overhead = std::chrono::duration<double>(Clock::now() - c0).count() / 257.0;  // per read, for now
+    }
+    const double clock_read_s = T.timer_overhead;
+    auto& providers_list = model_.force_providers();
+    provider_s_.assign(providers_list.size(), 0.0);
+    std::vector<double> search0;
+    for (const auto& p : providers_list) search0.push_back(p->search_seconds());
+    double skipped = 0.0;  // phases left to "other"
+    auto mark = Clock::now();
+    auto lap = [&](double& bucket) {
+        const auto now = Clock::now();
+        bucket += std::chrono::duration<double>(now - mark).count();
+        mark = now;
+        ++T.clock_reads;
     };
-    double dt_half = choose_dt();
-    double dt_prev = 0.0;
-    summary_.first_dt = dt_half;
-    summary_.min_dt = std::numeric_limits<double>::infinity();
-    summary_.max_dt = 0.0;
-    // The controlling element: the one with the smallest critical step (stability factor applied)
-    // over the run; the summary reports its step before the factor.
-    double ctrl_min = dt_crit_;
-    summary_.controlling_dt = dt_crit_unscaled_;
-    int ctrl_group = dt_group_, ctrl_element = dt_element_;
+
     EnergySummary& E = summary_.energy;
-    E.initial = e0_;
-    E.kinetic = e_kin_;
-    E.internal = e_int_;
-    E.hourglass = e_hg_;
-    record(true);
-    write_vtu(0.0);
+    if (!restarted_) {  // (a restarted run has all this from its file)
+        dt_half_ = choose_dt();
+        dt_prev_ = 0.0;
+        summary_.first_dt = dt_half_;
+        summary_.min_dt = std::numeric_limits<double>::infinity();
+        summary_.max_dt = 0.0;
+        // The controlling element: the one with the smallest critical step (stability factor
+        // applied) over the run; the summary reports its step before the factor.
+        ctrl_min_ = dt_crit_;
+        summary_.controlling_dt = dt_crit_unscaled_;
+        ctrl_group_ = dt_group_;
+        ctrl_element_ = dt_element_;
+        E.initial = e0_;
+        E.kinetic = e_kin_;
+        E.internal = e_int_;
+        E.hourglass = e_hg_;
+        record(true);
+        write_vtu(0.0);
+        notify_observer(true);
+    } else if (history_.time.empty()) {
+        record(true);  // a restart that records other nodes: a new history from the restart's state on
+    }
+    lap(T.output);
 
     // Energy bookkeeping: wext/damp are the work over step n of the forces at time n, taken with
     // the mid-point velocity (v(n-1/2) + v(n+1/2))/2; the *_half parts use v(n-1/2) alone. The
@@ -712,31 +1284,46 @@ RunSummary ExplicitSolver::run() {
     while (t_ < opt_.end_time - tiny && !stop_requested_) {
         // No shortened last step: a change of step changes the discrete energy that central
         // differences conserve; the run ends at the first step at or after end_time (as LS-DYNA).
-        const double dtavg = step_ == 0 ? 0.5 * dt_half : 0.5 * (dt_prev + dt_half);
+        const double dtavg = step_ == 0 ? 0.5 * dt_half_ : 0.5 * (dt_prev_ + dt_half_);
         external_forces(t_);
-        const bool providers = !model_.force_providers().empty();
+        const bool providers = !providers_list.empty();
         if (providers) {
             for (auto& f : fprov_) f.setZero();
             for (auto& m : mprov_) m.setZero();
-            for (auto& p : model_.force_providers()) p->add_forces(t_, s_, fprov_, mprov_);
+            lap(skipped);
+            for (std::size_t k = 0; k < providers_list.size(); ++k) {
+                providers_list[k]->add_forces(t_, s_, fprov_, mprov_);
+                lap(provider_s_[k]);
+            }
         }
-        for (const auto& mo : model_.motions())
+        // Prescribed motions: the velocity over the coming step that lands on the motion's position.
+        for (const auto& mo : model_.motions()) {
+            if (mo.position) {
+                for (int node : mo.nodes) {
+                    const Vec3 v = (mo.position(s_.X[node], t_ + dt_half_) - s_.x[node]) / dt_half_;
+                    for (int d = 0; d < 3; ++d) target_[target_index_[node]][d] = v[d];
+                }
+                continue;
+            }
+            const RigidPose pose = mo.rigid.pose(t_ + dt_half_);  // once per motion and step
             for (int node : mo.nodes) {
-                const Vec3 v = (mo.position(s_.X[node], t_ + dt_half) - s_.x[node]) / dt_half;
+                const Vec3 v = (pose.position(s_.X[node]) - s_.x[node]) / dt_half_;
                 for (int d = 0; d < 3; ++d) target_[target_index_[node]][d] = v[d];
             }
+        }
         // Prescribed velocities over the coming half step.
         for (const auto& p : model_.prescribed()) {
-            const double tn = t_ + dt_half;
+            const double tn = t_ + dt_half_;
             for (int node : p.nodes) {
                 double v;
                 if (p.displacement)
-                    v = (p.value * p.curve(tn) - (s_.x[node][p.dof] - s_.X[node][p.dof])) / dt_half;
+                    v = (p.value * p.curve(tn) - (s_.x[node][p.dof] - s_.X[node][p.dof])) / dt_half_;
                 else
-                    v = p.value * p.curve(t_ + 0.5 * dt_half);
+                    v = p.value * p.curve(t_ + 0.5 * dt_half_);
                 target_[target_index_[node]][p.dof] = v;
             }
         }
+        lap(T.constraints);
         // Central difference (Eq 2-5 with lumped M): v(n+1/2) from v(n-1/2), with the damping force
         // -alpha m v taken at the mid-point (v(n-1/2) + v(n+1/2))/2 (second order, unconditionally
         // stable for the damping term); x(n+1) = x(n) + dt v(n+1/2).
@@ -746,7 +1333,17 @@ RunSummary ExplicitSolver::run() {
             const auto [i0, i1] = par::chunk_range(c, n);
             for (int i = i0; i < i1; ++i) {
                 const double m = s_.mass[i];
-                if (!(m > 0.0)) continue;  // a node no element uses
+                if (!(m > 0.0)) {  // a node no element uses: it moves only when prescribed (rigid parts)
+                    const int ti = target_index_[i];
+                    if (ti >= 0) {
+                        Vec3 vp = Vec3::Zero();
+                        for (int d = 0; d < 3; ++d)
+                            if (!((fixed_[i] >> d) & 1u) && !std::isnan(target_[ti][d])) vp[d] = target_[ti][d];
+                        s_.v[i] = vp;
+                        s_.x[i] += dt_half_ * vp;
+                    }
+                    continue;
+                }
                 const Vec3 vm = s_.v[i];
                 const Vec3 F = providers ? Vec3(fext_[i] + fprov_[i] - s_.f[i]) : Vec3(fext_[i] - s_.f[i]);
                 const double a = alpha_[i] * dtavg * 0.5;
@@ -789,7 +1386,7 @@ RunSummary ExplicitSolver::run() {
                 p.ke_plus += kp;
                 if (!std::isfinite(kp) && p.bad < 0) p.bad = i;
                 s_.v[i] = vp;
-                s_.x[i] += dt_half * vp;
+                s_.x[i] += dt_half_ * vp;
             }
             partial[c] = p;
         }
@@ -840,16 +1437,7 @@ RunSummary ExplicitSolver::run() {
             tot.ke_plus += 0.5 * J * wp.squaredNorm();
             if (!std::isfinite(wp.squaredNorm()) && tot.bad < 0) tot.bad = node;
             s_.omega[k] = wp;
-            // Rodrigues: exp([phi]x) = I + sin(a) K + (1 - cos a) K^2, K the unit skew matrix of phi.
-            const Vec3 phi = dt_half * wp;
-            const double angle = phi.norm();
-            if (angle > 0.0) {
-                const Vec3 e = phi / angle;
-                Mat3 K;
-                K << 0, -e.z(), e.y(), e.z(), 0, -e.x(), -e.y(), e.x(), 0;
-                const Mat3 dR = Mat3::Identity() + std::sin(angle) * K + (1.0 - std::cos(angle)) * (K * K);
-                s_.rotation[k] = dR * s_.rotation[k];
-            }
+            beam::rotate(dt_half_ * wp, s_.rotation[k]);  // exp([w dt]x) R (Rodrigues)
         }
         // Energy balance at time n (kinetic from v(n-1/2).v(n+1/2), strain energy at x(n)).
         E.kinetic = tot.ke;
@@ -867,6 +1455,8 @@ RunSummary ExplicitSolver::run() {
         E.balance_error =
             E.kinetic + E.internal + E.hourglass + E.damping + E.viscous + E.contact - E.external - E.initial;
         E.max_abs_balance_error = std::max(E.max_abs_balance_error, std::abs(E.balance_error));
+        E.max_internal = std::max(E.max_internal, E.internal);
+        E.max_hourglass = std::max(E.max_hourglass, std::abs(E.hourglass));
         input_scale_ = std::abs(e0_) + w_abs_ + std::abs(w_prov_);
         E.reference = std::max({E.reference, input_scale_, tot.ke_plus + e_int_ + e_hg_});
 
@@ -876,28 +1466,34 @@ RunSummary ExplicitSolver::run() {
                                  "({:.4g} J)",
                                  tot.ke_plus + e_int_ + e_hg_, opt_.energy_growth_factor, input_scale_));
 
-        summary_.min_dt = std::min(summary_.min_dt, dt_half);
-        summary_.max_dt = std::max(summary_.max_dt, dt_half);
-        t_ += dt_half;
+        summary_.min_dt = std::min(summary_.min_dt, dt_half_);
+        summary_.max_dt = std::max(summary_.max_dt, dt_half_);
+        t_ += dt_half_;
         ++step_;
+        lap(T.update);
         // Forces at x(n+1) (rate terms from v(n+1/2)); critical step every dt_interval cycles.
         compute_forces(step_ % opt_.dt_interval == 0);
-        if (dt_crit_ < ctrl_min) {
-            ctrl_min = dt_crit_;
+        lap(T.elements);
+        if (dt_crit_ < ctrl_min_) {
+            ctrl_min_ = dt_crit_;
             summary_.controlling_dt = dt_crit_unscaled_;
-            ctrl_group = dt_group_;
-            ctrl_element = dt_element_;
+            ctrl_group_ = dt_group_;
+            ctrl_element_ = dt_element_;
         }
-        dt_prev = dt_half;
-        dt_half = choose_dt();
+        dt_prev_ = dt_half_;
+        dt_half_ = choose_dt();
+        lap(skipped);
         record(false);
         write_vtu(t_);
+        notify_observer(false);
+        restart_dumps();
+        lap(T.output);
         if (progress) {
             const auto now = std::chrono::steady_clock::now();
             if (std::chrono::duration<double>(now - last_progress).count() > 0.5) {
                 last_progress = now;
                 std::fprintf(stderr, "\r%s: t = %.4g / %.4g s, step %ld, dt %.3g s, KE %.3g J, IE %.3g J   ",
-                             opt_.name.c_str(), t_, opt_.end_time, step_, dt_half, E.kinetic, E.internal);
+                             opt_.name.c_str(), t_, opt_.end_time, step_, dt_half_, E.kinetic, E.internal);
                 std::fflush(stderr);
             }
         }
@@ -909,20 +1505,44 @@ RunSummary ExplicitSolver::run() {
     }
     // The last state (kinetic energy at t_end from v(n-1/2) alone: no v(n+1/2) exists yet).
     if (history_.time.empty() || history_.time.back() < t_) record(true);
+    if (last_observer_ < t_) notify_observer(true);
 
-    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
     summary_.steps = step_;
     summary_.end_time = t_;
     summary_.threads = par::threads();
-    summary_.wall_s = wall;
-    summary_.element_cycles_per_s = wall > 0 ? static_cast<double>(element_cycles_ - cycles0) / wall : 0.0;
-    if (ctrl_group >= 0) {
-        const auto& g = *model_.groups()[ctrl_group];
+    if (ctrl_group_ >= 0) {
+        const auto& g = *model_.groups()[ctrl_group_];
         summary_.controlling_part = g.part;
         summary_.controlling_kind = g.kind();
         summary_.controlling_block = g.block;
-        summary_.controlling_element = ctrl_element;
+        summary_.controlling_element = ctrl_element_;
+        summary_.controlling_rule = g.time_step_rule(ctrl_element_);
     }
+    // Timing table and contact interfaces (the final HDF5 below counts as output, measured first).
+    summary_.interfaces.clear();
+    for (std::size_t k = 0; k < providers_list.size(); ++k) {
+        const double search = providers_list[k]->search_seconds() - search0[k];
+        T.contact_search += search;
+        T.contact_forces += provider_s_[k] - search;
+        const ContactReport c = providers_list[k]->contact_report();
+        if (!c.is_contact) continue;
+        summary_.interfaces.push_back({providers_list[k]->name(), c.max_penetration, c.max_penetration_fraction,
+                                       c.stored_energy + c.dissipated_energy, c.stored_energy, c.dissipated_energy,
+                                       search, provider_s_[k] - search});
+    }
+    // The contact interfaces read the clock twice per pass and cycle (their search time).
+    T.clock_reads += 2 * static_cast<long>(providers_list.size()) * (step_ - step0);
+    const auto finish_timing = [&]() {
+        lap(T.output);
+        const double wall = std::chrono::duration<double>(Clock::now() - wall0).count();
+        T.timer_overhead = clock_read_s * static_cast<double>(T.clock_reads);
+        T.other = std::max(0.0, wall - (T.elements + T.contact_search + T.contact_forces + T.constraints + T.update +
+                                        T.output));
+        summary_.timing = T;
+        summary_.wall_s = wall;
+        summary_.element_cycles_per_s = wall > 0 ? static_cast<double>(element_cycles_ - cycles0) / wall : 0.0;
+    };
+    finish_timing();
     if (!opt_.h5_path.empty()) {
         io::H5Writer w(opt_.h5_path);
         w.write("time", history_.time);
@@ -945,9 +1565,14 @@ RunSummary ExplicitSolver::run() {
         w.write("energy/contact", history_.contact);
         w.write("energy/balance_error", history_.balance);
         for (const auto& [part, vm] : history_.max_von_mises) w.write("max_von_mises/" + part, vm);
-        w.attribute("/", "summary", summary_.to_json().dump());
+        // The summary without its timings (wall time, speed, threads: runs.json has them), so that
+        // identical runs give byte-identical files whatever the machine's load or thread count.
+        nlohmann::json summary = summary_.to_json();
+        for (const char* timing : {"wall_s", "element_cycles_per_s", "threads"}) summary.erase(timing);
+        w.attribute("/", "summary", summary.dump());
         w.commit();
     }
+    finish_timing();  // with the HDF5 file
     if (opt_.print_summary) std::cout << summary_.text() << std::flush;
     return summary_;
 }

@@ -48,6 +48,8 @@
 #include "explicit/curve.hpp"
 #include "explicit/element_group.hpp"
 #include "explicit/groups.hpp"
+#include "explicit/rigid_motion.hpp"
+#include "explicit/shell_group.hpp"
 #include "io/vtu.hpp"
 #include "mesh/mesh.hpp"
 
@@ -73,6 +75,9 @@ public:
     // --- parts (one group per block of the part) ---
     void add_hex8(std::string_view part, const ElasticMaterial& material, const Hex8Options& options = {});
     void add_beams(std::string_view part, const ElasticMaterial& material, const BeamOptions& options);
+    /// Belytschko-Tsay shells (quad4; tri3 as degenerate quads) of thickness options.thickness on
+    /// every block of `part` (explicit/shell_group.hpp).
+    void add_shells(std::string_view part, const ElasticMaterial& material, const ShellOptions& options);
     /// A point mass on one node (thesis "Mass 166"); several calls with the same part name add to it.
     void add_point_mass(const std::string& part, int node, double mass, double rotational_inertia = 0.0);
     /// Every Point1 element of a Point1 block `part` gets `mass_each`.
@@ -82,11 +87,33 @@ public:
 
     // --- constraints and loads ---
     void fix(const std::vector<int>& nodes, Dofs dofs = Dofs::all());
+    /// Symmetry plane of a half (or quarter) model: the nodes within `tolerance` of the plane through
+    /// `point` with normal `normal` get the normal translation fixed and, when they carry rotations
+    /// (beams, shells), the two rotations about the in-plane axes (the rotation about the normal
+    /// stays free). Returns those nodes; InputError when there are none. tolerance <= 0: 1e-9 x the
+    /// mesh's bounding-box diagonal. Only planes whose normal is a global axis (+-x, +-y, +-z) can be
+    /// expressed: the constraint is a fixed global DOF, and a skew plane would need a local frame per
+    /// node, which the solver does not have; any other normal is refused with an InputError.
+    std::vector<int> add_symmetry_plane(const Vec3& normal, const Vec3& point, double tolerance = 0.0);
+    /// The same on the given nodes (e.g. a node set), without looking at their coordinates.
+    void add_symmetry_plane(const Vec3& normal, const std::vector<int>& nodes);
     /// Prescribed velocity v(t) = value * curve(t) along global dof (0..2 translations, 3..5 rotations).
     void prescribe_velocity(const std::vector<int>& nodes, int dof, double value, Curve curve = {});
-    /// Nodes that follow x(t) = position(X, t) exactly (all three translations), e.g. finger root
-    /// nodes tied to a rotating rigid drum. position(X, 0) should be X.
+    /// Nodes that follow a rigid motion exactly (all three translations; rigid_motion.hpp), e.g. the
+    /// finger root nodes tied to the turning drum. A node may follow one motion only, and not be
+    /// fixed as well (InputError).
+    void prescribe_motion(const std::vector<int>& nodes, RigidMotion motion);
+    /// Nodes that follow x(t) = position(X, t) exactly (any motion; position(X, 0) should be X).
     void prescribe_motion(const std::vector<int>& nodes, std::function<Vec3(const Vec3& X, double t)> position);
+    /// A rigid part (LS-DYNA *MAT_RIGID with a prescribed motion): every node of the blocks of `part`
+    /// (solids, shells, any shape) follows `motion` exactly. The part gets no element group: no
+    /// element work, no mass (a prescribed body's inertia does not act on the rest). Its faces can be
+    /// a contact master (contact::ContactSurface::rigid_part; the interface reports the reaction on
+    /// it), and it is written to the VTU output with the rest (von Mises 0). Nodes it shares with a
+    /// deformable part are tied to it, and the work of their reactions is external work. Throws
+    /// InputError when the part does not exist, is already rigid, or (when the solver starts) also
+    /// has element groups.
+    void add_rigid_part(std::string_view part, RigidMotion motion);
     /// Contact and other state-dependent forces (see ForceProvider); returns a reference to it.
     ForceProvider& add_force_provider(std::unique_ptr<ForceProvider> provider);
     /// Prescribed displacement u(t) = value * curve(t) along dof (measured from the reference position;
@@ -98,6 +125,8 @@ public:
     void add_nodal_moment(const std::vector<int>& nodes, const Vec3& moment, Curve curve = {});
     /// Gravity acceleration g switched on at t_on (body force m g on every node's mass).
     void set_gravity(const Vec3& g, double t_on = 0.0);
+    /// Gravity g x curve(t), e.g. Curve::step(t_on) or a ramp (body force m g curve(t)).
+    void set_gravity(const Vec3& g, Curve curve);
     /// Mass-proportional damping alpha [1/s] of Eq 2-39 on the nodes of `part` (force -alpha m v,
     /// also on rotations), like *DAMPING_PART_MASS. A node shared by parts takes the largest alpha.
     void set_mass_damping(std::string_view part, double alpha);
@@ -124,9 +153,12 @@ public:
         Curve curve;
         bool moment;
     };
+    /// A prescribed motion of nodes: the rigid motion, or (when set) the general `position`.
     struct Motion {
         std::vector<int> nodes;
+        RigidMotion rigid;
         std::function<Vec3(const Vec3&, double)> position;
+        std::string part;  // the rigid part's name (empty: nodes tied by prescribe_motion)
     };
     const std::vector<Motion>& motions() const { return motions_; }
     std::vector<std::unique_ptr<ForceProvider>>& force_providers() { return providers_; }
@@ -138,7 +170,7 @@ public:
     const std::map<std::string, double, std::less<>>& mass_damping() const { return damping_; }
     double global_mass_damping() const { return global_alpha_; }
     const Vec3& gravity() const { return gravity_; }
-    double gravity_on() const { return gravity_on_; }
+    const Curve& gravity_curve() const { return gravity_curve_; }
     const std::vector<Vec3>& initial_velocity() const { return v0_; }
     const std::map<int, Vec3>& initial_angular_velocity() const { return w0_; }
 
@@ -157,7 +189,7 @@ private:
     std::map<std::string, double, std::less<>> damping_;
     double global_alpha_ = 0.0;
     Vec3 gravity_ = Vec3::Zero();
-    double gravity_on_ = 0.0;
+    Curve gravity_curve_;
     std::vector<Vec3> v0_;
     std::map<int, Vec3> w0_;
     bool finalized_ = false;
@@ -201,6 +233,22 @@ struct ExplicitOptions {
     // Deformed states for ParaView (VTU files listed in a PVD) every vtu_interval.
     std::filesystem::path pvd_path;
     double vtu_interval = 0.0;
+    // Restart dumps (LS-DYNA's d3dump): the complete solver state, written at the first cycle at or
+    // after each of restart_times and/or every restart_interval [s], one HDF5 file per dump,
+    // <restart_dir>/<name>-restart-<step>.h5 (step zero-padded, so the names sort in time), each
+    // written under a temporary name and renamed (a killed run never leaves a half-written dump).
+    // restart_from: start from such a file instead of t = 0, with this model and these options (which
+    // may change loads, motions, gravity, damping, end time, outputs: a "full deck restart"); the
+    // model must have the same mesh, groups and force providers (else InputError). With an unchanged
+    // model and options the run continues bit for bit as if it had never stopped (README: restart).
+    std::vector<double> restart_times;
+    double restart_interval = 0.0;
+    std::filesystem::path restart_dir;
+    std::filesystem::path restart_from;
+    // When the observer runs: < 0 at every history sample (the default); 0 every cycle; > 0 every
+    // observer_interval [s] (the first cycle at or after each), whatever the history interval. So an
+    // observer can watch every cycle without the history storing every cycle.
+    double observer_interval = -1.0;
     std::string name = "explicit";   // run name in the summary
     bool print_summary = true;       // to stdout at the end
     bool progress = true;            // an updating line on stderr, only when it is a terminal
@@ -231,7 +279,35 @@ struct EnergySummary {
     double balance_error = 0; // kinetic + internal + hourglass + damping + viscous + contact - external - initial
     double max_abs_balance_error = 0;
     double reference = 0;     // energy scale the relative error is taken against
+    double max_internal = 0, max_hourglass = 0;  // largest over the run (the health measure below)
     double relative_error() const { return reference > 0 ? max_abs_balance_error / reference : 0.0; }
+    /// Hourglass energy as a fraction of internal energy: their largest values over the run, so that
+    /// a run whose internal energy has decayed at the end is still judged where it mattered (the
+    /// LS-DYNA rule of thumb: below 10 %; check/run_health.hpp).
+    double hourglass_fraction() const { return max_internal > 0 ? max_hourglass / max_internal : (max_hourglass > 0 ? 1.0 : 0.0); }
+};
+
+/// Where the wall time of a run went (LS-DYNA's timing table at the end of d3hsp) [s]. Measured
+/// per cycle around each phase (a few clock reads per cycle, never per element or node):
+/// elements = internal forces of every group (with the element time steps); contact_search and
+/// contact_forces = the force providers (their own search time, ForceProvider::search_seconds, and
+/// the rest of add_forces); constraints = prescribed motions, rigid parts and prescribed velocities
+/// (their target velocities); update = the central-difference update of velocities and positions
+/// with the energy sums; output = histories, observer, VTU, restart dumps and the final HDF5;
+/// other = the rest of the wall time (loads and gravity, the step choice, progress line).
+struct TimingSummary {
+    double elements = 0, contact_search = 0, contact_forces = 0, constraints = 0, update = 0, output = 0, other = 0;
+    double timer_overhead = 0;  // estimated cost of the clock reads themselves (count x measured cost of one)
+    long clock_reads = 0;
+};
+
+/// Per contact interface (ForceProvider::contact_report), over the run.
+struct InterfaceSummary {
+    std::string name;
+    double max_penetration = 0;           // [m]
+    double max_penetration_fraction = 0;  // of the slave's local element size
+    double energy = 0, stored_energy = 0, dissipated_energy = 0;  // contact energy = stored + dissipated [J]
+    double search_s = 0, forces_s = 0;    // wall time
 };
 
 /// The run summary (LS-DYNA d3hsp/glstat style); to_json() feeds Study::record_run.
@@ -240,13 +316,17 @@ struct RunSummary {
     int nodes = 0, elements = 0, rotational_nodes = 0, threads = 1;
     long steps = 0;
     double end_time = 0, first_dt = 0, min_dt = 0, max_dt = 0;
+    std::vector<std::string> rigid_parts;
     std::string controlling_part, controlling_kind;
+    std::string controlling_rule;  // which rule gives its step (ElementGroup::time_step_rule)
     int controlling_block = -1, controlling_element = -1;
     double controlling_dt = 0;   // its critical step (before the 0.9 and the stability factor)
     double stability_factor = 1; // measured 2/omega_max over the Table 2-1 step (<= 1; solid groups)
     double mass = 0, added_mass = 0, added_mass_fraction = 0;
     EnergySummary energy;
     double wall_s = 0, element_cycles_per_s = 0;
+    TimingSummary timing;
+    std::vector<InterfaceSummary> interfaces;
     std::string text() const;
     nlohmann::json to_json() const;
 };
@@ -258,8 +338,9 @@ public:
     /// Runs to end_time. Throws SolverError on instability (NaN, energy growth, inverted element),
     /// InputError on a fixed step above critical.
     RunSummary run();
-    /// Called at every history sample (after the sample is stored), e.g. to probe the state or to
-    /// end the run early with request_stop().
+    /// Called at every history sample (after the sample is stored), or on its own schedule
+    /// (ExplicitOptions::observer_interval), e.g. to probe the state or to end the run early with
+    /// request_stop(). Also at the start and at the end state.
     std::function<void(const ExplicitSolver&)> observer;
     /// Ends the run after the current cycle (like LS-DYNA's sense switch "sw1"): for an observer
     /// that knows the event of interest is over, e.g. contact has ended. The summary's end_time is
@@ -278,12 +359,28 @@ public:
     double stability_factor() const { return stability_factor_; }
     /// omega_max of the solid groups measured at the start (0 when not measured).
     double measured_omega_max() const { return omega_max_; }
+    /// Restart files written by this run so far (ExplicitOptions::restart_times/restart_interval).
+    const std::vector<std::filesystem::path>& restart_files() const { return restart_files_; }
+    /// The latest restart file of run `name` in `dir` (the highest step), e.g. to resume a killed
+    /// run; InputError when there is none.
+    static std::filesystem::path latest_restart(const std::filesystem::path& dir, std::string_view name);
+    /// Writes the complete state to `path` (what the restart options do at their times).
+    void write_restart(const std::filesystem::path& path) const;
+    /// Largest element von Mises stress of part `part` at the last force evaluation (0 for a part
+    /// without groups), for observers that watch every cycle; History::max_von_mises holds the
+    /// maxima between history samples.
+    double max_von_mises(std::string_view part) const;
 
 private:
     void initialize();
     void compute_forces(bool compute_dt);
     void external_forces(double t);
     void record(bool force);
+    void notify_observer(bool force);
+    void start_fresh(double solid_table_dt);
+    void restore(const std::filesystem::path& path);
+    void restart_dumps();
+    double choose_dt() const;
     void write_vtu(double t);
     [[noreturn]] void unstable(const std::string& why);
     std::string element_name(int group, int element) const;
@@ -321,6 +418,18 @@ private:
     std::vector<int> target_index_;              // per node: index into target_, or -1
     long element_cycles_ = 0;
     mutable bool stop_requested_ = false;  // set by request_stop() from the observer
+    // Loop state carried between cycles (and through restarts).
+    double dt_half_ = 0.0, dt_prev_ = 0.0;  // the step to come and the last one
+    double ctrl_min_ = 0.0;                 // smallest critical step so far, and its element
+    int ctrl_group_ = -1, ctrl_element_ = -1;
+    double next_observer_ = 0.0, last_observer_ = -1.0;
+    std::vector<double> group_vm_;          // per group: largest von Mises at the last force evaluation
+    TimingSummary timing_;
+    bool restarted_ = false;                 // initialized from a restart file
+    std::vector<double> restart_times_;      // sorted, those still to come
+    double next_restart_ = 0.0;              // by restart_interval
+    std::vector<std::filesystem::path> restart_files_;
+    std::vector<double> provider_s_;        // per provider: wall time in add_forces
 };
 
 }  // namespace fem

@@ -15,7 +15,6 @@ namespace {
 constexpr ElementShape shape_of(int n) { return n == 4 ? ElementShape::Tet4 : ElementShape::Tet10; }
 // Below this many elements the loop runs on one thread (fork/join costs more than the work).
 constexpr int kTetParallelMin = 1024;
-
 }  // namespace
 
 template <int N, int Q>
@@ -61,14 +60,24 @@ TetGroup<N, Q>::TetGroup(const Mesh& mesh, int block, const ElasticMaterial& mat
         element_ratio_[e] = (2.0 / omega) / dt_table;
     }
     mass_scale_.assign(n, 1.0);
-    von_mises_.assign(n, 0.0);
-    cauchy_.assign(n, Mat3::Zero());
-    ie_.assign(n, 0.0);
-    visc_.assign(n, 0.0);
-    dt_.assign(n, std::numeric_limits<double>::infinity());
-    bad_.assign(n, 0);
-    fe_.resize(static_cast<std::size_t>(n) * N);
-    scatter_ = par::NodeScatter::build(conn_, mesh.node_count());
+    // Kernel order and the packed blocks (see tet_groups.hpp).
+    order_ = par::node_order(conn_);
+    kconn_.resize(n);
+    for (int k = 0; k < n; ++k) kconn_[k] = conn_[order_[k]];
+    static_assert(kChunk % hex8::kLanes == 0, "chunks must hold whole blocks of elements");
+    packed_.resize((n + hex8::kLanes - 1) / hex8::kLanes);
+    for (int k = 0; k < static_cast<int>(packed_.size()) * hex8::kLanes; ++k)
+        tet::pack_lane(tet::pack(refs_[order_[std::min(k, n - 1)]]), k % hex8::kLanes, packed_[k / hex8::kLanes]);
+    sqrt_mass_scale_.assign(n, 1.0);
+    von_mises_sq_.assign(n, 0.0);
+    dt_wave_speed_ = cfl::wave_speed(shape, material_);
+    colouring_ = par::ChunkColouring::build(kconn_, mesh.node_count(), kChunk);
+    partial_.resize(colouring_.chunk_count());
+    std::vector<char> used(mesh.node_count(), 0);
+    for (const auto& c : conn_)
+        for (int a : c) used[a] = 1;
+    for (int i = 0; i < mesh.node_count(); ++i)
+        if (used[i]) nodes_.push_back(i);
 }
 
 template <int N, int Q>
@@ -118,69 +127,120 @@ template <int N, int Q>
 void TetGroup<N, Q>::set_mass_scaling(std::vector<double> factor) {
     if (static_cast<int>(factor.size()) != size()) throw InputError("mass scaling: one factor per element needed");
     mass_scale_ = std::move(factor);
+    for (int k = 0; k < size(); ++k) sqrt_mass_scale_[k] = std::sqrt(mass_scale_[order_[k]]);
+}
+
+template <int N, int Q>
+std::vector<double> TetGroup<N, Q>::element_stress() const {
+    std::vector<double> vm(von_mises_sq_.size());
+    for (int k = 0; k < size(); ++k) vm[order_[k]] = std::sqrt(von_mises_sq_[k]);
+    return vm;
 }
 
 template <int N, int Q>
 GroupForceResult TetGroup<N, Q>::internal_forces(NodalState& s, bool compute_dt) {
-    constexpr ElementShape shape = shape_of(N);
     const int n = size();
-    // The viscous parts go to their own slots when the solver books them (NodalState::fv).
+    constexpr int W = hex8::kLanes;
+    static_assert(sizeof(Vec3) == 3 * sizeof(double), "nodal vectors are 3 contiguous doubles");
+    const double* xs = reinterpret_cast<const double*>(s.x.data());
+    const double* Xs = reinterpret_cast<const double*>(s.X.data());
+    const double* vs = reinterpret_cast<const double*>(s.v.data());
+    Vec3* fs = s.f.data();
+    // The viscous part of the forces, also into s.fv when the solver books it (exact energy booking).
     const bool book_viscous = !s.fv.empty() && adds_viscous_forces();
-    if (book_viscous && fve_.size() != fe_.size()) fve_.assign(fe_.size(), Vec3::Zero());
-#pragma omp parallel for schedule(dynamic, 256) if (n >= kTetParallelMin)
-    for (int e = 0; e < n; ++e) {
-        std::array<Vec3, N> x, v;
-        for (int a = 0; a < N; ++a) {
-            x[a] = s.x[conn_[e][a]];
-            v[a] = s.v[conn_[e][a]];
-        }
-        tet::Result<N> r;
-        tet::internal_force(refs_[e], kmat_, std::span<const Vec3>(x), std::span<const Vec3>(v), r);
-        Vec3* fe = &fe_[static_cast<std::size_t>(e) * N];
-        bad_[e] = !(r.min_jacobian > 0.0) || !std::isfinite(r.strain_energy);
-        if (bad_[e]) {
-            for (int a = 0; a < N; ++a) fe[a].setZero();
-            if (book_viscous)
-                for (int a = 0; a < N; ++a) fve_[static_cast<std::size_t>(e) * N + a].setZero();
-            ie_[e] = visc_[e] = 0.0;
-            continue;
-        }
-        for (int a = 0; a < N; ++a) fe[a] = r.force[a];
-        if (book_viscous)
-            for (int a = 0; a < N; ++a) fve_[static_cast<std::size_t>(e) * N + a] = r.viscous_force[a];
-        ie_[e] = r.strain_energy;
-        visc_[e] = r.viscous_power;
-        von_mises_[e] = r.von_mises;
-        cauchy_[e] = r.cauchy;
-        if (compute_dt) {
-            // Table 2-1 on the current nodes (with the Q term) times the measured stability factor.
-            double dt = factor_ *
-                        cfl::critical_time_step(shape, x, material_, kmat_.bulk_viscosity ? r.volumetric_strain_rate : 0.0,
-                                                kmat_.bulk) *
-                        std::sqrt(mass_scale_[e]);
-            if (beta_ > 0.0) {
-                const double xi = beta_ / dt;  // beta omega / 2 with omega = 2 / dt
-                dt *= std::sqrt(1.0 + xi * xi) - xi;
+    Vec3* fvs = book_viscous ? s.fv.data() : nullptr;
+    const bool bulk_on = kmat_.bulk_viscosity;
+
+    // One chunk of kChunk consecutive kernel-order elements, in blocks of W elements, one per lane.
+    auto run_chunk = [&](int c) {
+        Partial p;
+        p.dt = std::numeric_limits<double>::infinity();
+        tet::TetKernelResultBlock<N> r;
+        alignas(hex8::kLanesAlign) hex8::Lanes x[3][4], u[3][N], v[3][N], dt_block;  // see hex8::Lanes
+        const hex8::Lanes no_rate{};
+        const auto [k0, k1] = colouring_.range(c);  // k0 is a multiple of W (kChunk is)
+        const int last_block = static_cast<int>(packed_.size()) - 1;
+        for (int kb = k0; kb < k1; kb += W) {
+            const int lanes = std::min(W, k1 - kb);
+            {  // the block after next into the cache (the packed data is the largest stream)
+                const char* next = reinterpret_cast<const char*>(&packed_[std::min(kb / W + 2, last_block)]);
+                for (std::size_t b = 0; b < sizeof(tet::TetPackedBlock<Q>); b += 64) __builtin_prefetch(next + b);
             }
-            dt_[e] = dt;
+            for (int l = 0; l < W; ++l) {
+                const auto& cn = kconn_[kb + std::min(l, lanes - 1)];  // spare lanes repeat the last element
+                for (int a = 0; a < N; ++a) {
+                    const std::size_t o = 3 * static_cast<std::size_t>(cn[a]);
+                    for (int i = 0; i < 3; ++i) {
+                        u[i][a][l] = xs[o + i] - Xs[o + i];
+                        v[i][a][l] = vs[o + i];
+                    }
+                    if (a < 4)
+                        for (int i = 0; i < 3; ++i) x[i][a][l] = xs[o + i];
+                }
+            }
+            tet::internal_force(packed_[kb / W], kmat_, u, v, r, book_viscous);
+            // Table 2-1 tetrahedron (minimum altitude of the corner tetrahedron) on the current
+            // coordinates, with the bulk-viscosity Q term.
+            if (compute_dt)
+                tet::critical_time_step(x, bulk_on ? r.volumetric_strain_rate : no_rate, dt_wave_speed_, kmat_.bulk,
+                                        dt_block);
+            for (int l = 0; l < lanes; ++l) {
+                const int k = kb + l;
+                if (!(r.min_jacobian[l] > 0.0) || !std::isfinite(r.strain_energy[l])) {
+                    if (p.bad_k < 0) p.bad_k = k;
+                    continue;  // no force from an inverted element (the run stops)
+                }
+                // Direct scatter: no other thread touches these nodes now (colouring).
+                const auto& cn = kconn_[k];
+                for (int a = 0; a < N; ++a) {
+                    Vec3& f = fs[cn[a]];
+                    f[0] += r.f[0][a][l];
+                    f[1] += r.f[1][a][l];
+                    f[2] += r.f[2][a][l];
+                }
+                if (book_viscous)
+                    for (int a = 0; a < N; ++a) {
+                        Vec3& f = fvs[cn[a]];
+                        f[0] += r.fv[0][a][l];
+                        f[1] += r.fv[1][a][l];
+                        f[2] += r.fv[2][a][l];
+                    }
+                p.ie += r.strain_energy[l];
+                p.visc += r.viscous_power[l];
+                von_mises_sq_[k] = r.von_mises_sq[l];
+                p.vm_sq = std::max(p.vm_sq, r.von_mises_sq[l]);
+                if (compute_dt) {
+                    // The measured stability factor on Table 2-1 (tet_groups.hpp), mass scaling, then
+                    // the stiffness-damping reduction dt <= (2/omega)(sqrt(1 + xi^2) - xi), xi = beta omega/2.
+                    double dt = factor_ * dt_block[l] * sqrt_mass_scale_[k];
+                    if (beta_ > 0.0) {
+                        const double xi = beta_ / dt;
+                        dt *= std::sqrt(1.0 + xi * xi) - xi;
+                    }
+                    if (dt < p.dt) {
+                        p.dt = dt;
+                        p.dt_k = k;
+                    }
+                }
+            }
         }
-    }
-    scatter_.add_to(fe_, s.f, n >= kTetParallelMin);
-    if (book_viscous) scatter_.add_to(fve_, s.fv, n >= kTetParallelMin);
+        partial_[c] = p;
+    };
+    colouring_.for_each_chunk(n >= kTetParallelMin, run_chunk);
     GroupForceResult out;
-    for (int e = 0; e < n; ++e) {  // fixed order: the same bits on any number of threads
-        if (bad_[e]) {
-            if (out.bad_element < 0) out.bad_element = e;
-            continue;
-        }
-        out.internal_energy += ie_[e];
-        out.viscous_power += visc_[e];
-        out.max_von_mises = std::max(out.max_von_mises, von_mises_[e]);
-        if (compute_dt && dt_[e] < out.dt_min) {
-            out.dt_min = dt_[e];
-            out.dt_element = e;
+    int dt_k = -1, bad_k = -1;
+    for (const auto& p : partial_) {  // fixed (chunk) order: the same bits on any number of threads
+        out.internal_energy += p.ie;
+        out.viscous_power += p.visc;
+        out.max_von_mises = std::max(out.max_von_mises, std::sqrt(p.vm_sq));  // sqrt is monotone: max commutes
+        if (p.bad_k >= 0 && bad_k < 0) bad_k = p.bad_k;
+        if (p.dt < out.dt_min) {
+            out.dt_min = p.dt;
+            dt_k = p.dt_k;
         }
     }
+    out.bad_element = bad_k >= 0 ? order_[bad_k] : -1;
+    out.dt_element = dt_k >= 0 ? order_[dt_k] : -1;
     if (!compute_dt) out.dt_min = std::numeric_limits<double>::quiet_NaN();
     return out;
 }

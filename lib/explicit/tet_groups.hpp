@@ -51,18 +51,19 @@ public:
     TetGroup(const Mesh& mesh, int block, const ElasticMaterial& material, const TetGroupOptions& options = {});
     std::string kind() const override { return N == 4 ? "tet4" : "tet10"; }
     int size() const override { return static_cast<int>(refs_.size()); }
-    std::vector<int> nodes() const override { return scatter_.nodes; }
+    std::vector<int> nodes() const override { return nodes_; }
     double add_lumped_mass(NodalState& s) const override;
     double mass() const override;
     std::vector<double> reference_time_steps() const override;
     void set_mass_scaling(std::vector<double> factor) override;
     GroupForceResult internal_forces(NodalState& s, bool compute_dt) override;
-    std::vector<double> element_stress() const override { return von_mises_; }
+    std::vector<double> element_stress() const override;
     bool adds_viscous_forces() const override { return kmat_.bulk_viscosity || beta_ > 0.0; }
     bool set_stability_factor(double r) override;
     double element_omega_bound() const override;
 
     const ElasticMaterial& material() const { return material_; }
+    const hex8::Hex8Material& kernel_material() const { return kmat_; }
     const tet::Reference<N, Q>& reference(int e) const { return refs_[e]; }
     const std::array<int, N>& connectivity(int e) const { return conn_[e]; }
     /// Element e's lumped nodal masses (unscaled).
@@ -71,25 +72,43 @@ public:
     double stability_factor() const { return factor_; }
     /// r_e = (2 / omega_e) / Table 2-1 step of the reference element (the element bound).
     double element_stability_ratio(int e) const { return element_ratio_[e]; }
-    /// Elastic Cauchy stress (current-volume average) of element e at the last force evaluation.
-    const Mat3& cauchy(int e) const { return cauchy_[e]; }
+    /// Number of colours of the element chunks (barriers per force evaluation on several threads).
+    int colour_count() const { return static_cast<int>(colouring_.colours.size()); }
+
+    /// Elements per chunk: the unit of the deterministic partition (energy partial sums, colouring).
+    /// Smaller than the hexahedron's (each element is 2-4 x the work; the finger meshes have
+    /// 5,000-20,000 elements, and each colour needs enough chunks to keep two threads busy).
+    static constexpr int kChunk = 256;
 
 private:
+    // As Hex8Group (groups.hpp): everything public is in the block's element order; each cycle
+    // works in the kernel order (elements sorted by their smallest node, par::node_order), in
+    // blocks of hex8::kLanes elements (one per lane of the kernel), chunks of kChunk elements
+    // coloured so that chunks of one colour share no node, each element adding its forces straight
+    // into the nodal forces (par::ChunkColouring): the same bits on any number of threads.
     ElasticMaterial material_;
     hex8::Hex8Material kmat_;
     double beta_ = 0.0;
-    std::vector<std::array<int, N>> conn_;
-    std::vector<tet::Reference<N, Q>> refs_;
-    std::vector<std::array<double, N>> mass_;
-    std::vector<double> element_ratio_, element_omega_, table_dt_, mass_scale_, von_mises_;
+    std::vector<std::array<int, N>> conn_;     // block order
+    std::vector<tet::Reference<N, Q>> refs_;   // block order
+    std::vector<std::array<double, N>> mass_;  // block order
+    std::vector<double> element_ratio_, element_omega_, table_dt_, mass_scale_;  // block order
     double factor_ = 1.0;
-    std::vector<Mat3> cauchy_;
-    // Deterministic assembly as Hex8Group: element forces to fe_, then each node sums its slots in
-    // a fixed order (CSR node -> slots).
-    std::vector<Vec3> fe_, fve_;  // fve_: viscous parts, only when the solver books them (NodalState::fv)
-    std::vector<double> ie_, visc_, dt_;
-    std::vector<unsigned char> bad_;
-    par::NodeScatter scatter_;  // the group's nodes and their element force slots
+    std::vector<int> nodes_;                   // the group's nodes, increasing
+    std::vector<int> order_;                   // kernel position k -> element (block order)
+    std::vector<std::array<int, N>> kconn_;    // connectivity in kernel order
+    // The kernel's reference data in kernel order, blocks of kLanes elements; the lanes of the last
+    // block past the end repeat the last element.
+    std::vector<tet::TetPackedBlock<Q>> packed_;
+    std::vector<double> sqrt_mass_scale_;      // kernel order
+    std::vector<double> von_mises_sq_;         // kernel order (sqrt on output)
+    double dt_wave_speed_ = 0.0;               // Table 2-1 dilatational wave speed
+    par::ChunkColouring colouring_;
+    struct Partial {
+        double ie = 0, visc = 0, vm_sq = 0, dt = 0;
+        int dt_k = -1, bad_k = -1;
+    };
+    std::vector<Partial> partial_;  // one per chunk
 };
 
 using Tet4Group = TetGroup<4, 1>;

@@ -1,12 +1,14 @@
 #include "hand/football.hpp"
 
+#include <fmt/format.h>
+
 namespace fem::hand::football {
 
 using units::mm;
 
-std::vector<SpeedStep> Case::schedule(double t0) const {
-    if (t_switch < 0) return {{0.0, fast}};
-    return {{0.0, fast}, {t_switch - t0, slow}};
+Curve Case::schedule(double t0) const {
+    if (t_switch < 0) return Curve::constant(fast);
+    return Curve::steps({{0.0, fast}, {t_switch - t0, slow}}, fmt::format("Table 4-4 case {} pallet speed", id));
 }
 
 std::vector<Case> table_4_4() { return {{1, -1.0}, {2, 1.38}, {3, 1.28}, {4, 1.19}, {5, 1.06}}; }
@@ -40,7 +42,7 @@ Scene scene(const Case& c, const Options& o) {
     pallet.centre = Vec3(centre.x() - fast * t0 - pallet_offset, centre.y() - semi_axes.y(), 159 * mm);
     pallet.u = Vec3(200 * mm, 0, 0);
     pallet.v = Vec3(0, 0, -50 * mm);
-    pallet.schedule = c.schedule(t0);
+    pallet.speed = c.schedule(t0);
     s.plates.push_back(pallet);
     const contact::FrictionLaw mu{mu_static, mu_dynamic, o.decay};
     // Every finger against the football as one surface (one search, one stable-step bound: five

@@ -26,8 +26,8 @@ inline const Vec3 semi_axes{122 * units::mm, 66 * units::mm, 66 * units::mm};
 struct Case {
     int id = 0;
     double t_switch = -1.0;
-    /// The pallet's speed over model time tau = t - t0.
-    std::vector<SpeedStep> schedule(double t0 = 0.0) const;
+    /// The pallet's speed over model time tau = t - t0 (Curve::steps: the step is exact).
+    Curve schedule(double t0 = 0.0) const;
 };
 std::vector<Case> table_4_4();
 
@@ -38,7 +38,7 @@ struct Options {
     bool football = true;          // false: the hand alone
     bool finger_pairs = false;     // finger-finger contact pairs (neighbour_pairs())
     double start = 0.0;            // t0: the scene as seen from physical time t0 (model time t - t0)
-    EllipsoidGrid grid{8, 8, 4, 3, 0.5};  // 512 elements, 678 nodes (Table 4-2: 512 / 677)
+    EllipsoidGrid grid{};          // 512 elements, 678 nodes (Table 4-2: 512 / 677), inner block 0.4
 };
 
 /// The fingers whose sweeps overlap: neighbours on a level, and upper over lower within 22.5 deg.

@@ -1,6 +1,7 @@
 #include "hand/hand.hpp"
 
 #include <cmath>
+#include <numbers>
 #include <set>
 
 #include <fmt/format.h>
@@ -23,15 +24,15 @@ std::vector<FingerRow> table_4_1() {
     };
 }
 
-contact::RigidMotion Drum::motion() const {
+RigidMotion Drum::motion() const {
     // About -y: on the object side (+z) the drum surface moves in -x.
-    return contact::RigidMotion::rotation(centre, -Vec3::UnitY(), omega);
+    return RigidMotion::rotation(centre, -Vec3::UnitY(), omega);
 }
 
 Drum stepped_drum(double omega) {
     Drum d;
     d.levels = {{0.0, 2.0 * inch, 4.25 * inch}, {2.0 * inch, 4.0 * inch, 3.25 * inch}};
-    d.omega = contact::TimeFunction::constant(omega);
+    d.omega = Curve::constant(omega);
     return d;
 }
 
@@ -101,6 +102,28 @@ Mesh hand_mesh(const HandSpec& h) {
         all.append(m);
     }
     return all;
+}
+
+Mesh drum_mesh(const Drum& drum, int n) {
+    if (n < 3) throw InputError(fmt::format("drum mesh: needs at least 3 segments around (got {})", n));
+    Mesh m;
+    ElementBlock b{"drum", ElementShape::Quad4, {}};
+    for (const auto& l : drum.levels) {
+        const int base = static_cast<int>(m.nodes.size());
+        for (int i = 0; i < n; ++i) {
+            const double phi = 2.0 * std::numbers::pi * i / n;
+            const Vec3 er(std::sin(phi), 0.0, -std::cos(phi));
+            m.nodes.push_back(drum.centre + l.radius * er + l.y_bottom * Vec3::UnitY());
+            m.nodes.push_back(drum.centre + l.radius * er + l.y_top * Vec3::UnitY());
+        }
+        for (int i = 0; i < n; ++i) {
+            const int j = (i + 1) % n;
+            // bottom_i, top_i, top_j, bottom_j: normal y x e_t = e_r (outward).
+            for (int k : {base + 2 * i, base + 2 * i + 1, base + 2 * j + 1, base + 2 * j}) b.connectivity.push_back(k);
+        }
+    }
+    m.blocks.push_back(std::move(b));
+    return m;
 }
 
 }  // namespace fem::hand

@@ -24,9 +24,10 @@
 #include <string>
 #include <vector>
 
-#include "contact/rigid.hpp"
 #include "core/types.hpp"
 #include "core/units.hpp"
+#include "explicit/curve.hpp"
+#include "explicit/rigid_motion.hpp"
 #include "material/elastic.hpp"
 #include "mesh/finger.hpp"
 #include "mesh/mesh.hpp"
@@ -56,16 +57,16 @@ struct DrumLevel {
 
 /// The rigid drum: stepped cylinder about the y axis through `centre` (its bottom-face centre),
 /// turning at angular speed omega(t) [rad/s] in the sense that carries the object-side fingers in
-/// -x (about -y).
+/// -x (about -y). A speed schedule with stops is Curve::steps (explicit/curve.hpp).
 struct Drum {
     Vec3 centre = Vec3::Zero();
     std::vector<DrumLevel> levels;
-    contact::TimeFunction omega;
+    Curve omega = Curve::constant(0.0);
     /// Drum angle at t = 0 [rad] (in its sense of rotation): every finger starts this much further
     /// round (a run that starts part-way through a turn, e.g. just before contact).
     double initial_angle = 0.0;
     /// The drum's rigid motion (rotation about -y through the centre at omega).
-    contact::RigidMotion motion() const;
+    RigidMotion motion() const;
 };
 
 /// The stepped drum of Sec 4.2 (THESIS_CH4_5.md Sec 9 item 4, reconstructed): radius 4.25 in for
@@ -103,8 +104,14 @@ struct Placement {
 Placement place_finger(const HandSpec& hand, const FingerRow& finger);
 
 /// The fingers' meshes, placed, as parts "finger-<name>" with node sets "root-<name>" (root face),
-/// "tip-<name>" (tip face) and "tip-centre-<name>" (one node). The drum is not meshed: it is rigid.
+/// "tip-<name>" (tip face) and "tip-centre-<name>" (one node). The drum is meshed apart
+/// (drum_mesh): HandModel adds it as a rigid part.
 Mesh hand_mesh(const HandSpec& hand);
+
+/// The drum's cylindrical surfaces as Quad4 shells, `segments` around each level, numbered so that
+/// their normals point away from the axis: a rigid part (ExplicitModel::add_rigid_part) whose
+/// faces are a contact master (ContactSurface::rigid_part). Part "drum".
+Mesh drum_mesh(const Drum& drum, int segments = 48);
 
 /// Number of layers of a finger of length L: ceil(L / layer_length) (rounding guard 1e-9).
 int finger_layers(const FingerMesh& m, double length);

@@ -12,8 +12,10 @@
 //   hand::HandModel hm(s);                           // mesh + ExplicitModel + contact interfaces
 //   ExplicitSolver solver(hm.model(), options);
 //
-// Part names: fingers "finger-<name>", objects and plates by their `part`, and "drum" for the rigid
-// drum surface (a contact master only; the finger roots are tied to its motion).
+// Part names: fingers "finger-<name>", objects and plates by their `part`, and "drum" for the drum
+// surface. The drum and the plates are rigid parts of the explicit model (ExplicitModel::
+// add_rigid_part) moved by their RigidMotion, contact masters through ContactSurface::rigid_part;
+// the finger roots follow the drum's motion (ExplicitModel::prescribe_motion).
 #include <map>
 #include <memory>
 #include <optional>
@@ -28,16 +30,6 @@
 
 namespace fem::hand {
 
-/// Piecewise-constant speed: `speed` from time `from` on (the first entry's speed also before it).
-struct SpeedStep {
-    double from = 0.0;
-    double speed = 0.0;
-};
-/// The schedule as a time function whose steps rise over `ramp` seconds (the time function needs
-/// increasing times; its integral, the displacement, is exact). Throws InputError for an empty or
-/// unordered schedule.
-contact::TimeFunction speed_schedule(const std::vector<SpeedStep>& steps, double ramp = 1e-9);
-
 /// A deformable ellipsoid (hexahedral O-grid, mesh/ellipsoid.hpp), long axis along x.
 struct EllipsoidObject {
     std::string part = "object";
@@ -51,17 +43,18 @@ struct EllipsoidObject {
     double alpha = 0.0;          // mass damping [1/s] (thesis: objects undamped)
 };
 
-/// A rigid flat plate translating along `direction` with a speed schedule (the conveyor pallet).
-/// Spanned by the full edge vectors u, v about `centre`; contact pushes towards u x v.
+/// A rigid flat plate translating along `direction` at speed(t) (the conveyor pallet; a schedule
+/// with step changes is Curve::steps). Spanned by the full edge vectors u, v about `centre`
+/// (mesh: parallelogram_quad4, a rigid part); contact pushes towards u x v.
 struct Plate {
     std::string part = "plate";
     Vec3 centre = Vec3::Zero();
     Vec3 u = Vec3::UnitX(), v = -Vec3::UnitZ();
     int nu = 2, nv = 1;          // segments (Table 4-2's pallet: 2 shells)
     Vec3 direction = -Vec3::UnitX();
-    std::vector<SpeedStep> schedule;
+    Curve speed = Curve::constant(0.0);  // [m/s]
     double depth = 0.03;         // deepest penetration taken as contact [m]
-    contact::RigidMotion motion() const;
+    RigidMotion motion() const { return RigidMotion::translation(direction, speed); }
 };
 
 /// A contact pair: the slave part's surface nodes against the master part's faces (two_way: and
@@ -87,19 +80,17 @@ struct Scene {
     std::vector<Plate> plates;
     std::vector<ContactPair> contacts;
     Vec3 gravity = Vec3::Zero();
-    double gravity_on = 0.0;
-    /// Half objects get u_z = 0 on their cut plane (Table 4-3 "ellipsoid symmetric plane DOF UZ = 0").
+    Curve gravity_curve;         // gravity x curve(t) (default: on from t = 0)
+    /// Half objects get u_z = 0 on their cut plane (Table 4-3 "ellipsoid symmetric plane DOF UZ = 0"),
+    /// and their cut faces are left out of the contact surface (the mirrored half is there, not a wall).
     bool symmetry = true;
     DampingFrame damping_frame = DampingFrame::absolute;
     /// true: the fingers start with the drum's rigid-rotation velocity (spinning, undeformed);
     /// false: at rest while their roots start turning (a jolt at t = 0).
     bool fingers_start_spinning = true;
-    /// Drum surface segments around the circumference (contact master "drum").
+    /// Drum surface segments around the circumference (rigid part and contact master "drum").
     int drum_segments = 48;
 };
-
-/// The rigid drum surface: each level a cylinder of quads, outward (a contact master).
-contact::RigidSurface drum_surface(const Drum& drum, int segments, double depth);
 
 /// The built model. Owns the mesh's model; contact interfaces are reachable by pair name
 /// "<slave> on <master>".
@@ -114,7 +105,6 @@ public:
         std::string name;
         const ContactPair* spec = nullptr;
         contact::ContactInterface* contact = nullptr;
-        double element_size = 0.0;   // smallest mean segment size of the two surfaces [m]
     };
     const std::vector<Pair>& pairs() const { return pairs_; }
     contact::ContactInterface& contact(const std::string& name) const;
@@ -133,25 +123,18 @@ public:
     int tip_node(const std::string& finger) const;
     /// Where a material point of the drum-fixed frame with reference position X is at time t.
     Vec3 drum_position(const Vec3& X, double t) const { return drum_motion_.position(X, t); }
-    const contact::RigidMotion& drum_motion() const { return drum_motion_; }
+    const RigidMotion& drum_motion() const { return drum_motion_; }
     /// Current position of a plate's reference centre.
     Vec3 plate_centre(const std::string& part, double t) const;
-    /// Replaces a plate's speed schedule during a run (the contact pairs it masters follow). The new
-    /// schedule must agree with the old one up to the current time, or the plate jumps.
-    void set_plate_schedule(const std::string& part, std::vector<SpeedStep> schedule);
-    /// Wall-clock seconds spent in the contact pairs' force evaluations so far (search, projection,
-    /// friction): the contact share of the step time.
-    double contact_seconds() const { return clock_ ? *clock_ : 0.0; }
 
 private:
     Scene scene_;
     std::unique_ptr<ExplicitModel> model_;
     std::vector<Pair> pairs_;
-    contact::RigidMotion drum_motion_;
+    RigidMotion drum_motion_;
     std::map<std::string, std::vector<double>> lumped_;  // per part: lumped node mass (aligned with part_nodes)
     std::map<std::string, std::vector<int>> part_nodes_;
     std::map<std::string, double> part_mass_;
-    std::shared_ptr<double> clock_;
     std::vector<std::string> block_finger_, node_finger_;
 };
 

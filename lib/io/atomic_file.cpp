@@ -1,14 +1,27 @@
 #include "io/atomic_file.hpp"
 
+#include <atomic>
+#include <string>
 #include <system_error>
+
+#include <unistd.h>
+
+#include <fmt/format.h>
 
 #include "core/error.hpp"
 
 namespace fem::io {
 
+std::filesystem::path partial_name(const std::filesystem::path& path) {
+    // Unique per process and writer: two runs (or two writers of one run) never share a temporary.
+    static std::atomic<unsigned> counter{0};
+    std::filesystem::path p = path;
+    p += fmt::format(".{}-{}.partial", ::getpid(), counter++);
+    return p;
+}
+
 AtomicFile::AtomicFile(std::filesystem::path path) : path_(std::move(path)) {
-    partial_ = path_;
-    partial_ += ".partial";
+    partial_ = partial_name(path_);
     std::error_code ec;
     if (path_.has_parent_path()) std::filesystem::create_directories(path_.parent_path(), ec);
     out_.open(partial_, std::ios::binary | std::ios::trunc);

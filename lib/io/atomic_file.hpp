@@ -1,7 +1,8 @@
 #pragma once
 // Writes a file so that it never exists half-written under its final name: the content goes to a
-// temporary sibling, and commit() renames it into place. A writer destroyed without commit()
-// (an exception on the way) removes the temporary.
+// temporary sibling `<name>.<pid>-<n>.partial` (unique per process and writer), and commit() renames
+// it into place. A writer destroyed without commit() (an exception on the way) removes the
+// temporary; one killed leaves it, and io::RunFolder removes such leftovers.
 #include <filesystem>
 #include <fstream>
 
@@ -9,7 +10,7 @@ namespace fem::io {
 
 class AtomicFile {
 public:
-    /// Opens `<path>.partial` for writing, creating the parent folders; throws InputError naming
+    /// Opens the temporary `<path>.<pid>-<n>.partial` for writing, creating the parent folders; throws InputError naming
     /// the path when that fails.
     explicit AtomicFile(std::filesystem::path path);
     ~AtomicFile();
@@ -28,6 +29,9 @@ private:
     std::ofstream out_;
     bool committed_ = false;
 };
+
+/// The temporary name AtomicFile and H5Writer write `path` under: `<path>.<pid>-<n>.partial`.
+std::filesystem::path partial_name(const std::filesystem::path& path);
 
 /// Writes `text` to `path` atomically.
 void write_text_file(const std::filesystem::path& path, const std::string& text);

@@ -35,6 +35,31 @@ private:
     std::unique_ptr<Impl> impl_;
 };
 
+/// Reads an HDF5 file written by H5Writer (restart files, tests). Every reading error is an
+/// InputError naming the file and the dataset or attribute.
+class H5Reader {
+public:
+    explicit H5Reader(std::filesystem::path path);
+    ~H5Reader();
+    H5Reader(const H5Reader&) = delete;
+    H5Reader& operator=(const H5Reader&) = delete;
+
+    const std::filesystem::path& path() const { return path_; }
+    /// True when the dataset or group exists.
+    bool has(const std::string& name) const;
+    std::vector<double> read(const std::string& dataset) const;
+    Eigen::MatrixXd read_matrix(const std::string& dataset) const;
+    std::vector<long long> read_ints(const std::string& dataset) const;
+    /// Attributes on a dataset or group ("/" for the file).
+    double attribute_number(const std::string& object, const std::string& name) const;
+    std::string attribute_string(const std::string& object, const std::string& name) const;
+
+private:
+    struct Impl;
+    std::filesystem::path path_;
+    std::unique_ptr<Impl> impl_;
+};
+
 /// Reads a 1-D or 2-D double dataset back (for tests and post-processing).
 Eigen::MatrixXd read_h5_matrix(const std::filesystem::path& path, const std::string& dataset);
 

@@ -39,6 +39,10 @@ public:
     /// Rewrites the .pvd (called by add as well, so the series is readable while a run goes on).
     void write() const;
     int size() const { return static_cast<int>(entries_.size()); }
+    /// The listed files (time, file name beside the .pvd), e.g. for a restart to continue the series.
+    const std::vector<std::pair<double, std::string>>& entries() const { return entries_; }
+    /// Continues a series written before (a restarted run): the next file gets the next index.
+    void resume(std::vector<std::pair<double, std::string>> entries) { entries_ = std::move(entries); }
 
 private:
     std::filesystem::path path_;

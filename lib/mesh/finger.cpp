@@ -179,10 +179,12 @@ void set_tet_options(const TetOptions& o, const char* who) {
     gmsh::option::setNumber("Mesh.MeshSizeFromCurvature", 0);
     gmsh::option::setNumber("Mesh.MeshSizeExtendFromBoundary", 1);
     gmsh::option::setNumber("Mesh.Algorithm", 6);    // Frontal-Delaunay surfaces
-    gmsh::option::setNumber("Mesh.Algorithm3D", 1);  // Delaunay
+    if (o.algorithm_3d != 1 && o.algorithm_3d != 10)
+        throw InputError(std::string(who) + ": algorithm_3d must be 1 (Delaunay) or 10 (HXT), got " + std::to_string(o.algorithm_3d));
+    gmsh::option::setNumber("Mesh.Algorithm3D", o.algorithm_3d);  // default 1: Delaunay
     // Gmsh's tetrahedron optimiser (elements below quality 0.3) removes most slivers: a sliver's tiny
     // altitude would set the time step (Table 2-1). Debian's Gmsh is built without Netgen.
-    gmsh::option::setNumber("Mesh.Optimize", 1);
+    gmsh::option::setNumber("Mesh.Optimize", o.optimize ? 1 : 0);
     gmsh::option::setNumber("Mesh.SecondOrderLinear", 0);  // tet10 mid-edge nodes on the true surface
 }
 

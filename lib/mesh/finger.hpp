@@ -82,6 +82,12 @@ struct TetOptions {
     /// scaled to meet that mean (Gmsh's tetrahedra come out ~15 % larger than asked). false: one
     /// mesh at Gmsh size h.
     bool match_mean_volume = true;
+    /// Gmsh's 3D algorithm (Mesh.Algorithm3D: 1 Delaunay, 10 HXT; Debian's Gmsh has no Netgen, which
+    /// Frontal needs) and whether its
+    /// tetrahedron optimiser runs (Mesh.Optimize): the defaults make the study's meshes; the others
+    /// let finger_damping --tet-step-rules try other meshers' meshes of the same finger.
+    int algorithm_3d = 1;
+    bool optimize = true;
 };
 
 /// Tetrahedral elliptic cylinder (OpenCASCADE kernel, Delaunay with Gmsh's optimiser), meshed by

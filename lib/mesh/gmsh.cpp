@@ -207,18 +207,50 @@ Mesh read_gmsh(const std::filesystem::path& path) {
     if (path.extension() != ".msh")
         throw InputError(where + " does not end in .msh (only Gmsh mesh files are read, not geometry or scripts)");
     if (!std::ifstream(path)) throw InputError(where + " cannot be opened for reading");
+    if (std::filesystem::file_size(path, ec) == 0) throw InputError(where + " is empty");
 
     GmshSession session;
     Mesh mesh;
     try {
         gmsh::clear();
-        gmsh::open(path.string());
+        // Gmsh reads some malformed files with a warning only: a node or element id given twice is
+        // "skipped" (one of the two silently wins, and the mesh is then wrong in a way that shows up
+        // much later, as an inverted element). Such warnings are errors here.
+        gmsh::option::setNumber("General.Verbosity", 2);  // warnings reach the logger (not the terminal)
+        gmsh::logger::start();
+        // merge, not open: gmsh::open holds a process-wide "busy" lock that a read which fails midway
+        // never releases, and every later open in the process then reads nothing ("I'm busy! Ask me
+        // that later...", Gmsh 4.8; found by the fuzz target tests/fuzz/fuzz_gmsh). After clear(),
+        // merge reads a .msh file into the empty model the same way.
+        gmsh::merge(path.string());
+        std::vector<std::string> log;
+        gmsh::logger::get(log);
+        gmsh::logger::stop();
+        gmsh::option::setNumber("General.Verbosity", 0);
+        for (const std::string& line : log)
+            if (line.rfind("Warning", 0) == 0 && line.find("uplicate") != std::string::npos)
+                throw InputError(where + " is malformed: " + line.substr(line.find(':') + 2) +
+                                 " (an id given twice; Gmsh would keep only one of them)");
         mesh = mesh_from_gmsh_model(where);
         gmsh::clear();
     } catch (const std::string& gmsh_error) {  // Gmsh's API throws its last error message
+        // The logged errors and warnings say more than the last one ("Error loading ...").
+        std::vector<std::string> log;
+        gmsh::logger::get(log);
+        gmsh::logger::stop();
+        gmsh::option::setNumber("General.Verbosity", 0);
         gmsh::clear();
-        throw InputError(where + " is malformed: " + gmsh_error);
+        std::string detail;
+        for (const std::string& line : log)
+            if ((line.rfind("Error", 0) == 0 || line.rfind("Warning", 0) == 0) && line.find(gmsh_error) == std::string::npos)
+                detail += (detail.empty() ? " (" : "; ") + line.substr(line.find(':') + 2);
+        if (detail.empty() && gmsh_error.rfind("Error loading", 0) == 0)
+            detail = " (Gmsh stopped reading it: a truncated file, a section with fewer lines than its count, or a line with "
+                     "missing fields";
+        throw InputError(where + " is malformed: " + gmsh_error + (detail.empty() ? "" : detail + ")"));
     } catch (...) {
+        gmsh::logger::stop();
+        gmsh::option::setNumber("General.Verbosity", 0);
         gmsh::clear();
         throw;
     }

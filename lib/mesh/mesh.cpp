@@ -2,9 +2,15 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <map>
+#include <utility>
 #include <sstream>
 
+#include <fmt/format.h>
+
 #include "core/error.hpp"
+#include "core/memory.hpp"
 
 namespace fem {
 
@@ -79,6 +85,16 @@ double centre_jacobian(ElementShape shape, const std::vector<Vec3>& x) {
     }
 }
 
+// Nodes and elements are numbered with int: a generator asked for more is refused before it
+// allocates anything (a 70000 x 70000 grid would overflow the node numbering).
+void require_int_count(double nodes, double elements, const std::string& what) {
+    constexpr double limit = std::numeric_limits<int>::max();
+    if (nodes > limit || elements > limit)
+        throw InputError(fmt::format("{} has {:.3g} nodes and {:.3g} elements; the library numbers both with 32-bit integers "
+                                     "(at most {})", what, nodes, elements, std::numeric_limits<int>::max()));
+    require_memory(nodes * sizeof(Vec3) + elements * 8 * sizeof(int), what);
+}
+
 }  // namespace
 
 void validate(const Mesh& mesh) {
@@ -113,6 +129,7 @@ void validate(const Mesh& mesh) {
 
 Mesh box_hex8(double lx, double ly, double lz, int nx, int ny, int nz, std::string part) {
     if (nx < 1 || ny < 1 || nz < 1) throw InputError("box_hex8 needs at least one element per direction");
+    require_int_count((nx + 1.0) * (ny + 1.0) * (nz + 1.0), 1.0 * nx * ny * nz, fmt::format("a {} x {} x {} hex8 box", nx, ny, nz));
     Mesh m;
     auto id = [&](int i, int j, int k) { return (k * (ny + 1) + j) * (nx + 1) + i; };
     for (int k = 0; k <= nz; ++k)
@@ -141,10 +158,67 @@ Mesh box_hex8(double lx, double ly, double lz, int nx, int ny, int nz, std::stri
     return m;
 }
 
+Mesh box_tets(double lx, double ly, double lz, int nx, int ny, int nz, ElementShape shape, std::string part) {
+    if (shape != ElementShape::Tet4 && shape != ElementShape::Tet10)
+        throw InputError("box_tets makes tet4 or tet10 elements, not " + std::string(to_string(shape)));
+    const Mesh hex = box_hex8(lx, ly, lz, nx, ny, nz, part);
+    Mesh m;
+    m.nodes = hex.nodes;
+    ElementBlock b{std::move(part), shape, {}};
+    std::map<std::pair<int, int>, int> mid;
+    auto midpoint = [&](int a, int c) {
+        const auto key = std::minmax(a, c);
+        auto it = mid.find(key);
+        if (it != mid.end()) return it->second;
+        const int id = m.add_node(0.5 * (m.nodes[a] + m.nodes[c]));
+        mid.emplace(key, id);
+        return id;
+    };
+    // Hex corner of the lattice offset (i, j, k) in box_hex8's node order; the six tetrahedra walk
+    // from corner (0,0,0) to (1,1,1) one axis at a time, in every order of the axes.
+    const int corner[2][2][2] = {{{0, 4}, {3, 7}}, {{1, 5}, {2, 6}}};  // [i][j][k]
+    const int perms[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
+    for (int e = 0; e < hex.blocks[0].size(); ++e) {
+        const auto h = hex.blocks[0].element(e);
+        for (const auto& p : perms) {
+            int step[3] = {0, 0, 0};
+            int v[4];
+            v[0] = h[corner[0][0][0]];
+            for (int s = 0; s < 3; ++s) {
+                step[p[s]] = 1;
+                v[s + 1] = h[corner[step[0]][step[1]][step[2]]];
+            }
+            const Vec3 &x0 = m.nodes[v[0]], &x1 = m.nodes[v[1]], &x2 = m.nodes[v[2]], &x3 = m.nodes[v[3]];
+            if ((x1 - x0).dot((x2 - x0).cross(x3 - x0)) < 0) std::swap(v[1], v[2]);
+            if (shape == ElementShape::Tet4) {
+                b.add(v);
+            } else {
+                const int t[10] = {v[0], v[1], v[2], v[3], midpoint(v[0], v[1]), midpoint(v[1], v[2]),
+                                   midpoint(v[0], v[2]), midpoint(v[0], v[3]), midpoint(v[2], v[3]), midpoint(v[1], v[3])};
+                b.add(t);
+            }
+        }
+    }
+    m.blocks.push_back(std::move(b));
+    const double eps = 1e-9 * (lx + ly + lz);
+    m.node_sets["x0"] = m.select_nodes([&](const Vec3& x) { return x.x() < eps; });
+    m.node_sets["x1"] = m.select_nodes([&](const Vec3& x) { return x.x() > lx - eps; });
+    m.node_sets["y0"] = m.select_nodes([&](const Vec3& x) { return x.y() < eps; });
+    m.node_sets["y1"] = m.select_nodes([&](const Vec3& x) { return x.y() > ly - eps; });
+    m.node_sets["z0"] = m.select_nodes([&](const Vec3& x) { return x.z() < eps; });
+    m.node_sets["z1"] = m.select_nodes([&](const Vec3& x) { return x.z() > lz - eps; });
+    return m;
+}
+
 Mesh rectangle_quads(double lx, double ly, int nx, int ny, ElementShape shape, std::string part) {
     if (nx < 1 || ny < 1) throw InputError("rectangle_quads needs at least one element per direction");
     if (shape != ElementShape::Quad4 && shape != ElementShape::Quad8)
         throw InputError("rectangle_quads makes quad4 or quad8 elements, not " + std::string(to_string(shape)));
+    {
+        const double s = shape == ElementShape::Quad8 ? 2 : 1;  // grid points per element edge
+        require_int_count((s * nx + 1) * (s * ny + 1), 1.0 * nx * ny,
+                          fmt::format("a {} x {} {} grid", nx, ny, to_string(shape)));
+    }
     Mesh m;
     const bool serendipity = shape == ElementShape::Quad8;
     // Quad8 uses a grid of half-spacing with the element-centre points left out.
@@ -179,8 +253,27 @@ Mesh rectangle_quads(double lx, double ly, int nx, int ny, ElementShape shape, s
     return m;
 }
 
+Mesh parallelogram_quad4(const Vec3& centre, const Vec3& u, const Vec3& v, int nu, int nv, std::string part) {
+    if (nu < 1 || nv < 1 || !(u.cross(v).norm() > 0.0))
+        throw InputError("parallelogram_quad4 '" + part + "': needs nu, nv >= 1 and non-parallel u, v");
+    Mesh m;
+    for (int j = 0; j <= nv; ++j)
+        for (int i = 0; i <= nu; ++i)
+            m.add_node(centre + (static_cast<double>(i) / nu - 0.5) * u + (static_cast<double>(j) / nv - 0.5) * v);
+    ElementBlock b{std::move(part), ElementShape::Quad4, {}};
+    for (int j = 0; j < nv; ++j)
+        for (int i = 0; i < nu; ++i) {
+            const int a = j * (nu + 1) + i;
+            const int e[4] = {a, a + 1, a + nu + 2, a + nu + 1};
+            b.add(e);
+        }
+    m.blocks.push_back(std::move(b));
+    return m;
+}
+
 Mesh line_beam2(const Vec3& a, const Vec3& b, int n, std::string part) {
     if (n < 1) throw InputError("line_beam2 needs at least one element");
+    require_int_count(n + 1.0, n, fmt::format("a line of {} beam elements", n));
     Mesh m;
     for (int i = 0; i <= n; ++i) m.add_node(a + (b - a) * (static_cast<double>(i) / n));
     ElementBlock blk{std::move(part), ElementShape::Beam2, {}};

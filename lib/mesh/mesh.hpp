@@ -70,10 +70,23 @@ void validate(const Mesh& mesh);
 /// "y0", "y1", "z0", "z1" (the six faces).
 Mesh box_hex8(double lx, double ly, double lz, int nx, int ny, int nz, std::string part = "box");
 
+/// The box of box_hex8 with every hexahedron split into six tetrahedra around its main diagonal
+/// (a conforming split of the structured grid), `shape` Tet4 or Tet10 (mid-edge nodes shared between
+/// neighbours, Gmsh order: corners, then edges 01, 12, 02, 03, 23, 13). Node sets as box_hex8 ("x0",
+/// "x1", ..., mid-edge nodes on those faces included).
+Mesh box_tets(double lx, double ly, double lz, int nx, int ny, int nz, ElementShape shape = ElementShape::Tet10,
+              std::string part = "box");
+
 /// nx x ny quadrilaterals (Quad4 or Quad8) filling [0,lx] x [0,ly] in the z = 0 plane. Node sets
 /// "x0", "x1", "y0", "y1" (the four edges).
 Mesh rectangle_quads(double lx, double ly, int nx, int ny, ElementShape shape = ElementShape::Quad4,
                      std::string part = "plate");
+
+/// nu x nv Quad4 elements filling the parallelogram centred at `centre` spanned by u and v (full
+/// edge vectors), numbered counter-clockwise about u x v (their normal), part `part`: a flat rigid
+/// surface such as the ground or a conveyor pallet's top. Node (i, j) = centre + (i/nu - 1/2) u +
+/// (j/nv - 1/2) v is node j (nu + 1) + i.
+Mesh parallelogram_quad4(const Vec3& centre, const Vec3& u, const Vec3& v, int nu, int nv, std::string part);
 
 /// n two-node line elements from a to b, part `part`. Node sets "start" and "end".
 Mesh line_beam2(const Vec3& a, const Vec3& b, int n, std::string part = "beam");

@@ -1,125 +1,144 @@
 #include "modal/case.hpp"
 
+#include <algorithm>
 #include <map>
 #include <set>
 #include <sstream>
 
 #include <fmt/format.h>
-#include <toml++/toml.h>
 
 #include "assembly/model.hpp"
 #include "core/error.hpp"
+#include "input/toml_input.hpp"
+#include "io/run_folder.hpp"
 #include "mesh/gmsh.hpp"
 #include "mesh/mesh.hpp"
 
 namespace fem::modal {
 namespace {
 
-[[noreturn]] void fail(const std::filesystem::path& file, const std::string& what) {
-    throw InputError(file.string() + ": " + what);
-}
-
-DofMask parse_dofs(const toml::node_view<const toml::node>& v, DofMask fallback, const std::filesystem::path& file,
-                   const std::string& where) {
-    if (!v) return fallback;
-    const toml::array* a = v.as_array();
-    if (!a) fail(file, where + ".dofs must be an array of DOF names (ux uy uz rx ry rz)");
-    static const std::map<std::string, Dof> names = {{"ux", UX}, {"uy", UY}, {"uz", UZ}, {"rx", RX}, {"ry", RY}, {"rz", RZ}};
+DofMask parse_dofs(const input::TomlTable& t, DofMask fallback) {
+    if (!t.has("dofs")) return fallback;
+    static const std::map<std::string, DofMask> names = {{"ux", dof_bit(UX)}, {"uy", dof_bit(UY)}, {"uz", dof_bit(UZ)},
+                                                         {"rx", dof_bit(RX)}, {"ry", dof_bit(RY)}, {"rz", dof_bit(RZ)},
+                                                         {"all", kAllDofs}};
+    const auto list = t.choices("dofs", {"ux", "uy", "uz", "rx", "ry", "rz", "all"});
+    if (list.empty()) t.fail("dofs", "must name at least one DOF (ux uy uz rx ry rz all)");
     DofMask m = 0;
-    for (const auto& e : *a) {
-        const auto s = e.value<std::string>();
-        if (!s) fail(file, where + ".dofs holds a non-string");
-        if (*s == "all") m |= kAllDofs;
-        else if (auto it = names.find(*s); it != names.end()) m |= dof_bit(it->second);
-        else fail(file, where + ".dofs: unknown DOF '" + *s + "' (ux uy uz rx ry rz all)");
-    }
+    for (const auto& s : list) m |= names.at(s);
     return m;
 }
 
-template <class T>
-T required(const toml::table& t, const char* key, const std::filesystem::path& file, const std::string& where) {
-    const auto v = t[key].value<T>();
-    if (!v) fail(file, where + " needs '" + key + "'" + (t.contains(key) ? " of the right type" : ""));
-    return *v;
+// "; largest stiffness, smallest mass in part 'beam' (steel: E = 1e+308 Pa, nu = 0.3, rho = 7800 kg/m^3)":
+// the parts (and their materials) that hold the extremes of the stiffness and mass diagonals.
+std::string extremes(const Conditioning& cond, const AssembledSystem& sys, const Mesh& mesh, const ModalCase& c) {
+    // Reduced DOF -> node, node -> part (the first block that uses it).
+    std::vector<int> node_of_reduced(sys.size(), -1);
+    for (int node = 0; node < sys.dofs.node_count(); ++node)
+        for (int k = 0; k < sys.dofs.dofs(node); ++k) {
+            const int reduced = sys.reduction.reduced_of_full[sys.dofs.dof(node, k)];
+            if (reduced >= 0 && node_of_reduced[reduced] < 0) node_of_reduced[reduced] = node;
+        }
+    std::vector<int> block_of_node(mesh.node_count(), -1);
+    for (int b = static_cast<int>(mesh.blocks.size()) - 1; b >= 0; --b)
+        for (int n : mesh.blocks[b].connectivity) block_of_node[n] = b;
+    std::vector<std::pair<std::string, std::string>> roles;  // part, roles (in order of first mention)
+    for (const auto& [dof, role] : {std::pair{cond.dof_k_max, "largest stiffness"}, {cond.dof_k_min, "smallest stiffness"},
+                                    {cond.dof_m_max, "largest mass"}, {cond.dof_m_min, "smallest mass"}}) {
+        const int node = dof >= 0 ? node_of_reduced[dof] : -1;
+        if (node < 0 || block_of_node[node] < 0) continue;
+        const std::string& part = mesh.blocks[block_of_node[node]].part;
+        auto it = std::find_if(roles.begin(), roles.end(), [&](const auto& r) { return r.first == part; });
+        if (it == roles.end()) roles.emplace_back(part, role);
+        else it->second += std::string(", ") + role;
+    }
+    std::string out;
+    for (const auto& [part, role] : roles) {
+        out += fmt::format("; {} in part '{}'", role, part);
+        for (const CasePart& p : c.parts)
+            if (p.name == part)
+                out += fmt::format(" ({}: E = {:g} Pa, nu = {:g}, rho = {:g} kg/m^3{})", p.material.name,
+                                   p.material.youngs_modulus, p.material.poissons_ratio, p.material.density,
+                                   p.thickness > 0 ? fmt::format(", thickness {:g} m", p.thickness) : "");
+    }
+    return out;
+}
+
+}  // namespace
+
+namespace {
+
+ModalCase from_document(const input::TomlDocument& doc, const std::string& stem) {
+    const input::TomlTable root = doc.root();
+    root.allow({"mesh", "output", "modes", "shift_hz", "mass", "materials", "parts", "supports", "couplings"});
+    ModalCase c;
+    c.mesh = root.path("mesh");
+    c.output = root.has("output") ? root.path("output") : doc.base() / (stem + "_modes");
+    c.options.modes = root.integer_or<int>("modes", 10, {.min = 1});
+    c.options.shift_hz = root.real_or("shift_hz", 0.0);
+    c.mass = root.choice_or("mass", {"consistent", "lumped"}, "consistent") == "lumped" ? solid::MassKind::Lumped
+                                                                                       : solid::MassKind::Consistent;
+
+    std::map<std::string, ElasticMaterial> materials;
+    if (const auto mats = root.optional_table("materials"))
+        for (const auto& [name, t] : mats->entries()) {
+            t.allow({"E", "nu", "rho"});
+            materials.emplace(name, ElasticMaterial::make(name, t.real("E", input::Range::positive()),
+                                                          t.real("nu", input::Range::open(-1.0, 0.5)),
+                                                          t.real("rho", input::Range::positive())));
+        }
+    const auto parts = root.tables("parts");
+    if (parts.empty()) root.fail("no [[parts]]: give each part of the mesh a material");
+    for (const input::TomlTable& t : parts) {
+        t.allow({"name", "material", "thickness"});
+        CasePart p;
+        p.name = t.string("name");
+        const std::string mat = t.string("material");
+        auto it = materials.find(mat);
+        if (it == materials.end()) {
+            std::vector<std::string> known;
+            for (const auto& [name, m] : materials) known.push_back(name);
+            t.fail("material", "'" + mat + "' is not defined under [materials]" + input::did_you_mean(mat, known));
+        }
+        p.material = it->second;
+        p.thickness = t.real_or("thickness", 0.0, input::Range::positive());
+        c.parts.push_back(p);
+    }
+    for (const input::TomlTable& t : root.tables("supports")) {
+        t.allow({"set", "dofs"});
+        c.supports.push_back({t.string("set"), parse_dofs(t, kAllDofs)});
+    }
+    for (const input::TomlTable& t : root.tables("couplings")) {
+        t.allow({"set", "sets", "dofs"});
+        CaseCoupling cp;
+        if (t.has("sets") == t.has("set")) t.fail("give exactly one of set (one node set) and sets (two node sets)");
+        if (t.has("sets")) {
+            cp.sets = t.strings("sets");
+            if (cp.sets.size() != 2) t.fail("sets", "must name two node sets (coincident node pairs)");
+        } else {
+            cp.sets.push_back(t.string("set"));
+        }
+        cp.dofs = parse_dofs(t, kTranslations);
+        c.couplings.push_back(cp);
+    }
+    doc.finish();
+    return c;
 }
 
 }  // namespace
 
 ModalCase read_modal_case(const std::filesystem::path& path) {
-    if (!std::filesystem::exists(path)) throw InputError("case file '" + path.string() + "' does not exist");
-    toml::table root;
-    try {
-        root = toml::parse_file(path.string());
-    } catch (const toml::parse_error& e) {
-        std::ostringstream msg;
-        msg << "line " << e.source().begin.line << ": " << e.description();
-        fail(path, msg.str());
-    }
-    const auto base = path.parent_path();
-    ModalCase c;
-    c.mesh = base / required<std::string>(root, "mesh", path, "the case");
-    c.output = base / root["output"].value_or(path.stem().string() + "_modes");
-    c.options.modes = static_cast<int>(root["modes"].value_or<int64_t>(10));
-    c.options.shift_hz = root["shift_hz"].value_or(0.0);
-    const std::string mass = root["mass"].value_or<std::string>("consistent");
-    if (mass == "lumped") c.mass = solid::MassKind::Lumped;
-    else if (mass != "consistent") fail(path, "mass = '" + mass + "' (consistent or lumped)");
+    return from_document(input::TomlDocument::read(path), path.stem().string());
+}
 
-    std::map<std::string, ElasticMaterial> materials;
-    if (const toml::table* mats = root["materials"].as_table())
-        for (const auto& [key, node] : *mats) {
-            const std::string name(key.str());
-            const toml::table* t = node.as_table();
-            if (!t) fail(path, "materials." + name + " must be a table with E, nu, rho");
-            const std::string where = "materials." + name;
-            materials.emplace(name, ElasticMaterial::make(name, required<double>(*t, "E", path, where),
-                                                          required<double>(*t, "nu", path, where),
-                                                          required<double>(*t, "rho", path, where)));
-        }
-    const toml::array* parts = root["parts"].as_array();
-    if (!parts || parts->empty()) fail(path, "no [[parts]]: give each part of the mesh a material");
-    for (std::size_t i = 0; i < parts->size(); ++i) {
-        const toml::table* t = (*parts)[i].as_table();
-        const std::string where = fmt::format("parts[{}]", i);
-        if (!t) fail(path, where + " must be a table");
-        CasePart p;
-        p.name = required<std::string>(*t, "name", path, where);
-        const std::string mat = required<std::string>(*t, "material", path, where);
-        auto it = materials.find(mat);
-        if (it == materials.end()) fail(path, where + " (" + p.name + "): material '" + mat + "' is not defined under [materials]");
-        p.material = it->second;
-        p.thickness = (*t)["thickness"].value_or(0.0);
-        if ((*t).contains("thickness") && !(p.thickness > 0))
-            fail(path, where + " (" + p.name + "): thickness must be positive");
-        c.parts.push_back(p);
-    }
-    if (const toml::array* sup = root["supports"].as_array())
-        for (std::size_t i = 0; i < sup->size(); ++i) {
-            const toml::table* t = (*sup)[i].as_table();
-            const std::string where = fmt::format("supports[{}]", i);
-            if (!t) fail(path, where + " must be a table");
-            c.supports.push_back({required<std::string>(*t, "set", path, where), parse_dofs((*t)["dofs"], kAllDofs, path, where)});
-        }
-    if (const toml::array* cps = root["couplings"].as_array())
-        for (std::size_t i = 0; i < cps->size(); ++i) {
-            const toml::table* t = (*cps)[i].as_table();
-            const std::string where = fmt::format("couplings[{}]", i);
-            if (!t) fail(path, where + " must be a table");
-            CaseCoupling cp;
-            if (const toml::array* sets = (*t)["sets"].as_array()) {
-                for (const auto& s : *sets)
-                    if (auto v = s.value<std::string>()) cp.sets.push_back(*v);
-                if (cp.sets.size() != 2) fail(path, where + ".sets must name two node sets (coincident node pairs)");
-            } else {
-                cp.sets.push_back(required<std::string>(*t, "set", path, where));
-            }
-            cp.dofs = parse_dofs((*t)["dofs"], kTranslations, path, where);
-            c.couplings.push_back(cp);
-        }
-    return c;
+ModalCase parse_modal_case(std::string_view text, const std::string& source, const std::filesystem::path& base) {
+    return from_document(input::TomlDocument::parse(text, source, base), std::filesystem::path(source).stem().string());
 }
 
 std::string run_modal_case(const ModalCase& c) {
+    // The output folder is checked (writable, not in use by another run) before anything is solved;
+    // the results replace the previous run's set only when they are all written.
+    io::RunFolder out(c.output, "fem-modal");
     const Mesh mesh = read_gmsh(c.mesh);
     Model model(mesh);
     std::set<int> covered;
@@ -144,8 +163,20 @@ std::string run_modal_case(const ModalCase& c) {
         else model.couple(mesh.node_set(cp.sets[0]), cp.dofs);
     }
     const AssembledSystem sys = model.assemble();
-    const ModalResult r = solve_modes(sys, c.options);
-    write_results(c.output, mesh, sys, r);
+    // A solve that fails for numerical reasons names the parts and materials at the extremes of the
+    // stiffness and mass diagonals (the inputs that make the problem ill-conditioned).
+    const Conditioning cond(sys.stiffness, sys.mass);
+    ModalResult r;
+    try {
+        r = solve_modes(sys, c.options);
+    } catch (const SolverError& e) {
+        throw SolverError(e.what() + extremes(cond, sys, mesh, c));
+    } catch (const InputError& e) {
+        if (cond.representable()) throw;
+        throw InputError(e.what() + extremes(cond, sys, mesh, c));
+    }
+    write_results(out.staging(), mesh, sys, r);
+    out.commit();
     return summary(sys, r) + "  results: " + c.output.string() + "/{frequencies.csv, modes.h5, modes.pvd}\n";
 }
 

@@ -26,8 +26,13 @@
 //   sets = ["screw1_plate", "screw1_bracket"]   # node pairs at coincident places ...
 //   # set = "screw1"                            # ... or all nodes of one set share the DOFs
 //   dofs = ["ux", "uy", "uz"]   # default translations
+//
+// Every setting takes effect as written or is refused: a misspelt key, a value of the wrong type
+// (modes = 2.5), out of range (modes = 0, nu = 0.5) or not finite (E = nan) is an InputError naming
+// the file, the line and the key.
 #include <filesystem>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "assembly/dof_map.hpp"
@@ -60,12 +65,17 @@ struct ModalCase {
     std::vector<CaseCoupling> couplings;
 };
 
-/// Parses and validates the case file; InputError naming the file, the key and the problem (missing
+/// Parses and validates the case file (input/toml_input.hpp: every key typed and range-checked,
+/// unknown or unused keys refused); InputError naming the file, line, key and problem (missing
 /// file, TOML syntax, unknown material, non-physical material, unknown DOF name...).
 ModalCase read_modal_case(const std::filesystem::path& path);
+/// The same from case-file text; `source` names it in messages, `base` is where relative paths start.
+ModalCase parse_modal_case(std::string_view text, const std::string& source, const std::filesystem::path& base = ".");
 
-/// Reads the mesh, builds the model, solves, writes the results into case.output and returns the
-/// run summary. Unknown physical groups and blocks without a part are InputErrors.
+/// Reads the mesh, builds the model, solves, writes the results into case.output as one run's set
+/// (io::RunFolder: the folder is checked before solving, a concurrent run into it is refused, the
+/// previous run's files are replaced and listed in manifest.txt) and returns the run summary.
+/// Unknown physical groups and blocks without a part are InputErrors.
 std::string run_modal_case(const ModalCase& c);
 
 }  // namespace fem::modal

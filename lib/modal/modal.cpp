@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
+#include <optional>
 #include <numbers>
 #include <sstream>
 
@@ -17,6 +19,7 @@
 
 #include "assembly/model.hpp"
 #include "core/error.hpp"
+#include "core/memory.hpp"
 #include "io/hdf5.hpp"
 #include "io/table.hpp"
 #include "io/vtu.hpp"
@@ -61,6 +64,10 @@ public:
 #endif
         ldlt_ = std::make_unique<Eigen::SimplicialLDLT<SpMat, Eigen::Lower>>();
         ldlt_->compute(a);
+        if (ldlt_->info() != Eigen::Success && sigma > 0)
+            throw InputError(fmt::format("factorization of K - sigma M failed at sigma = {:g} rad^2/s^2: the shift ({:g} Hz) "
+                                         "is at an eigenvalue of the model; move shift_hz away from it",
+                                         sigma, std::sqrt(sigma) / (2 * std::numbers::pi)));
         if (ldlt_->info() != Eigen::Success)
             throw InputError("factorization of K - sigma M failed (sigma = " + fmt::format("{:g}", sigma) +
                              "): model has rigid-body modes: add supports or use shift");
@@ -71,6 +78,10 @@ public:
         int tiny = 0;
         for (Eigen::Index i = 0; i < d.size(); ++i)
             if (std::abs(d(i)) <= 1e-11 * dmax) ++tiny;
+        if (tiny > 0 && sigma > 0)
+            throw InputError(fmt::format("K - sigma M is singular at sigma = {:g} rad^2/s^2 ({} zero pivots): the shift "
+                                         "({:g} Hz) is at an eigenvalue of the model; move shift_hz away from it",
+                                         sigma, tiny, std::sqrt(sigma) / (2 * std::numbers::pi)));
         if (tiny > 0)
             throw InputError(fmt::format("K - sigma M is singular at sigma = {:g} ({} zero pivots): model has rigid-body "
                                          "modes: add supports or use shift (a negative shift_hz)",
@@ -127,6 +138,31 @@ private:
 
 }  // namespace
 
+Conditioning::Conditioning(const SpMat& K, const SpMat& M) {
+    for (Eigen::Index i = 0; i < K.nonZeros(); ++i) k_finite = k_finite && std::isfinite(K.valuePtr()[i]);
+    for (Eigen::Index i = 0; i < M.nonZeros(); ++i) m_finite = m_finite && std::isfinite(M.valuePtr()[i]);
+    k_min = m_min = std::numeric_limits<double>::infinity();
+    int first_non_finite = -1;  // reported as the largest stiffness
+    for (Eigen::Index j = 0; j < K.rows(); ++j) {
+        const double k = K.coeff(j, j), m = M.coeff(j, j);
+        if (!std::isfinite(k) && first_non_finite < 0) first_non_finite = static_cast<int>(j);
+        if (k > 0 && k < k_min) k_min = k, dof_k_min = static_cast<int>(j);
+        if (k > 0 && k > k_max) k_max = k, dof_k_max = static_cast<int>(j);
+        if (m > 0 && m < m_min) m_min = m, dof_m_min = static_cast<int>(j);
+        if (m > 0 && m > m_max) m_max = m, dof_m_max = static_cast<int>(j);
+        if (m > 0) lambda_max = std::max(lambda_max, k / m);
+    }
+    if (first_non_finite >= 0) dof_k_max = first_non_finite;
+}
+
+bool Conditioning::representable() const { return k_finite && m_finite && lambda_max < 1e300; }
+
+std::string Conditioning::describe() const {
+    return fmt::format("stiffness diagonal from {:.3g} to {:.3g} (ratio {:.3g}), mass diagonal from {:.3g} to {:.3g} "
+                       "(ratio {:.3g}), largest K_ii / M_ii {:.3g} rad^2/s^2",
+                       k_min, k_max, k_max / k_min, m_min, m_max, m_max / m_min, lambda_max);
+}
+
 ModalResult solve_modes(const SpMat& K, const SpMat& M, const ModalOptions& o) {
     const int n = static_cast<int>(K.rows());
     if (K.rows() != K.cols() || M.rows() != n || M.cols() != n) throw InputError("modal: K and M must be square and of equal size");
@@ -135,28 +171,56 @@ ModalResult solve_modes(const SpMat& K, const SpMat& M, const ModalOptions& o) {
         throw InputError(fmt::format("modal: {} modes asked but the model has only {} free DOFs", o.modes, n));
     ModalResult r;
     r.shift = (o.shift_hz < 0 ? -1.0 : 1.0) * std::pow(2 * std::numbers::pi * o.shift_hz, 2);
+    if (!std::isfinite(r.shift))
+        throw InputError(fmt::format("modal: shift_hz = {:g} Hz gives the shift sigma = {:g} rad^2/s^2, not a finite number",
+                                     o.shift_hz, r.shift));
     const int ncv = std::min(n, o.basis > 0 ? std::max(o.basis, o.modes + 1) : std::max(2 * o.modes + 1, o.modes + 16));
+    // The Lanczos basis (n x ncv) and the modes (n x modes) are dense.
+    require_memory(8.0 * n * (ncv + o.modes) * 2, fmt::format("a modal solve of {} modes on {} DOFs (Lanczos basis {})",
+                                                              o.modes, n, ncv));
+
+    // Values that double precision cannot carry through the solve are named before it starts.
+    const Conditioning cond(K, M);
+    if (!cond.k_finite)
+        throw InputError("modal: the stiffness matrix holds non-finite entries (an overflow: is a Young's modulus or a "
+                         "thickness far too large for SI units, Pa and m?)");
+    if (!cond.m_finite)
+        throw InputError("modal: the mass matrix holds non-finite entries (an overflow: is a density far too large for SI "
+                         "units, kg/m^3?)");
+    if (!(cond.lambda_max < 1e300))
+        throw InputError(fmt::format("modal: the eigenvalues overflow double precision: {} (is a density far too small "
+                                     "or a Young's modulus far too large for SI units?)", cond.describe()));
 
     auto t0 = Clock::now();
     ShiftInvert op(K, M, o.use_cholmod);
     MassProduct bop(M);
-    // The constructor factorizes K - sigma M (through set_shift).
-    Spectra::SymGEigsShiftSolver<ShiftInvert, MassProduct, Spectra::GEigsMode::ShiftInvert> eigs(op, bop, o.modes, ncv,
-                                                                                                    r.shift);
-    r.factor_seconds = seconds_since(t0);
-    r.factor_nonzeros = op.nonzeros();
-    r.factorization = op.backend();
-    t0 = Clock::now();
-    eigs.init();
-    // Largest |1 / (lambda - sigma)| = eigenvalues nearest the shift; returned in ascending lambda.
-    const auto nconv = eigs.compute(Spectra::SortRule::LargestMagn, o.max_iterations, o.tolerance, Spectra::SortRule::SmallestAlge);
+    using Solver = Spectra::SymGEigsShiftSolver<ShiftInvert, MassProduct, Spectra::GEigsMode::ShiftInvert>;
+    std::optional<Solver> solver;
+    Eigen::Index nconv = 0;
+    try {
+        // The constructor factorizes K - sigma M (through set_shift).
+        solver.emplace(op, bop, o.modes, ncv, r.shift);
+        r.factor_seconds = seconds_since(t0);
+        r.factor_nonzeros = op.nonzeros();
+        r.factorization = op.backend();
+        t0 = Clock::now();
+        solver->init();
+        // Largest |1 / (lambda - sigma)| = eigenvalues nearest the shift; returned in ascending lambda.
+        nconv = solver->compute(Spectra::SortRule::LargestMagn, o.max_iterations, o.tolerance, Spectra::SortRule::SmallestAlge);
+    } catch (const InputError&) {
+        throw;
+    } catch (const std::exception& e) {  // Spectra's own failures (a tridiagonal eigensolve that does not converge)
+        throw SolverError(fmt::format("modal: the eigensolver failed ({}); the problem is ill-conditioned: {}", e.what(),
+                                      cond.describe()));
+    }
+    auto& eigs = *solver;
     r.solve_seconds = seconds_since(t0);
     r.iterations = static_cast<int>(eigs.num_iterations());
     r.operations = op.operations();
     if (eigs.info() != Spectra::CompInfo::Successful || nconv < o.modes)
         throw SolverError(fmt::format("modal: Lanczos converged {} of {} modes in {} restarts (basis {}); raise "
-                                      "max_iterations or the basis size",
-                                      nconv, o.modes, r.iterations, ncv));
+                                      "max_iterations or the basis size ({})",
+                                      nconv, o.modes, r.iterations, ncv, cond.describe()));
     r.eigenvalues = eigs.eigenvalues();
     if (r.shift == 0.0) {
         // A factorization can pass a singular K when round-off leaves its zero pivots slightly

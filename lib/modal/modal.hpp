@@ -52,9 +52,25 @@ struct ModalResult {
     double factor_seconds = 0.0, solve_seconds = 0.0;
 };
 
+/// The spread of the diagonals of K and M (lower triangles, reduced DOFs): what makes
+/// K phi = lambda M phi hard or impossible in double precision (parts many orders of magnitude
+/// apart in stiffness or mass, a value that overflows). Error messages of solve_modes quote it;
+/// callers that know the model name the parts at the extreme DOFs.
+struct Conditioning {
+    Conditioning(const Eigen::SparseMatrix<double>& stiffness, const Eigen::SparseMatrix<double>& mass);
+    double k_min = 0, k_max = 0, m_min = 0, m_max = 0;  // over the positive diagonal entries
+    int dof_k_min = -1, dof_k_max = -1, dof_m_min = -1, dof_m_max = -1;  // where (dof_k_max: a non-finite one first)
+    double lambda_max = 0;  // max K_ii / M_ii: about the highest eigenvalue [rad^2/s^2]
+    bool k_finite = true, m_finite = true;
+    /// Every entry finite and the eigenvalue scale below 1e300.
+    bool representable() const;
+    std::string describe() const;
+};
+
 /// Lowest `options.modes` pairs of the generalized problem with K, M given as LOWER triangles (as
-/// AssembledSystem holds them). Throws InputError for a singular model without a shift, SolverError
-/// when Lanczos does not converge.
+/// AssembledSystem holds them). Throws InputError for a singular model without a shift, a shift at
+/// an eigenvalue, a shift or matrices that overflow (with the Conditioning), SolverError with the
+/// Conditioning when the eigensolver fails or Lanczos does not converge.
 ModalResult solve_modes(const Eigen::SparseMatrix<double>& stiffness, const Eigen::SparseMatrix<double>& mass,
                         const ModalOptions& options);
 ModalResult solve_modes(const AssembledSystem& system, const ModalOptions& options);

@@ -19,9 +19,17 @@
 //   penalty = 3.0
 //   filter = "sensitivity"      # none | sensitivity | density
 //   filter_radius = 0.003       # m
+//   min_stiffness = 1e-9        # E_min/E0 (E = E_min + x^p (E0 - E_min)), or instead
+//                               # min_density = 1e-3: x >= x_min with E = x^p E0 (the 99-line code)
+//   projection = "none"         # or "heaviside" (with filter = "density"): beta 1, 2, 4, ... up to
+//   projection_beta_max = 32    #   projection_beta_max, doubled every 50 iterations or on convergence
 //   move_limit = 0.2
 //   change_tolerance = 0.01
-//   max_iterations = 200
+//   oc_tolerance = 1e-12        # OC bisection: relative width of the lambda bracket (88-line code: 1e-3)
+//   max_iterations = 1000
+//   solver = "auto"             # direct (sparse Cholesky) | multigrid (CG, structured quad4 grids) |
+//                               #   auto: multigrid above 20,000 free DOF on a grid, direct otherwise
+//   solver_tolerance = 1e-6     # multigrid-CG: stop at |f - K u| <= this |f|
 //
 //   [[support]]                 # node selection: edge = "x0"|"x1"|"y0"|"y1", node_set = "name",
 //   edge = "x0"                 #   at = [x, y] (the node there), or box = [xmin, ymin, xmax, ymax]
@@ -39,7 +47,10 @@
 //   [output]
 //   directory = "topopt-out"    # relative to the working directory
 //
-// Every mistake is an InputError naming the file, the table and the key.
+// Every mistake is an InputError naming the file, the line and the key (lib/input: wrong types,
+// non-integers, out-of-range and non-finite values, unknown keys and keys that have no effect with
+// the other settings, such as mesh on a rectangle or filter_radius with filter = "none"). A grid
+// the machine cannot hold is refused before it is built, with the memory it would need.
 #include <filesystem>
 #include <string>
 #include <string_view>

@@ -7,14 +7,32 @@
 #include <fmt/format.h>
 
 #include "core/error.hpp"
+#include "core/memory.hpp"
 
 namespace fem::topopt {
+
+// Memory of W before it is built: each element has about (ball of radius r) / (domain box) * n
+// neighbours, counted in the dimensions the centroids span (a plane domain is 2D, a folded shell
+// 3D), at most n; each costs a triplet and a stored entry (about 32 bytes together).
+double Filter::estimated_bytes(std::span<const Vec3> c, double r) {
+    if (c.empty()) return 0;
+    Vec3 lo = c.front(), hi = lo;
+    for (const auto& p : c) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+    const double n = static_cast<double>(c.size());
+    double fraction = 1;
+    for (int d = 0; d < 3; ++d) {
+        const double extent = hi(d) - lo(d);
+        if (extent > 0) fraction *= std::min(1.0, 2 * r / extent);
+    }
+    return 32.0 * n * std::max(1.0, std::min(n, fraction * n));
+}
 
 Filter::Filter(std::span<const Vec3> c, std::span<const double> v, double r) : radius_(r) {
     if (!(r > 0)) throw InputError(fmt::format("filter radius must be > 0, got {}", r));
     if (c.size() != v.size()) throw InputError("filter: one volume per element centroid expected");
     const int n = static_cast<int>(c.size());
     volume_ = Eigen::Map<const Eigen::VectorXd>(v.data(), n);
+    require_memory(estimated_bytes(c, r), fmt::format("a filter of radius {:g} m over {} elements", r, n));
 
     // Bucket the centroids in cubes of edge r: the neighbours of an element lie in the 27 cubes
     // around its own.

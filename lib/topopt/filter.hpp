@@ -27,6 +27,10 @@ public:
     /// than the element spacing gives the identity). Throws InputError for r <= 0 or a size mismatch.
     Filter(std::span<const Vec3> centroids, std::span<const double> volumes, double radius);
 
+    /// Memory W will need (bytes, an upper estimate): the constructor refuses a radius whose filter
+    /// the machine cannot hold (fem::require_memory); readers can ask first to name the setting.
+    static double estimated_bytes(std::span<const Vec3> centroids, double radius);
+
     const Eigen::SparseMatrix<double, Eigen::RowMajor>& weights() const { return W_; }
     double radius() const { return radius_; }
 

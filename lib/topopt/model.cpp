@@ -57,6 +57,65 @@ std::vector<Vec3> element_centroids(const Mesh& mesh) {
     return c;
 }
 
+void require_finite_stiffness(const Eigen::MatrixXd& k, const ElasticMaterial& material, double thickness) {
+    if (k.allFinite()) return;
+    throw InputError(fmt::format("the element stiffness overflows double precision with E = {:g} Pa and thickness {:g} m "
+                                 "(check the units: SI, Pa and m)", material.youngs_modulus, thickness));
+}
+
+std::optional<Grid> structured_grid(const Mesh& mesh) {
+    if (mesh.blocks.empty() || mesh.node_count() == 0) return std::nullopt;
+    for (const auto& b : mesh.blocks)
+        if (b.shape != ElementShape::Quad4) return std::nullopt;
+    Vec3 lo = mesh.nodes.front(), hi = lo;
+    for (const auto& p : mesh.nodes) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+    const double tol = 1e-9 * (hi - lo).norm();
+    if (hi.z() - lo.z() > tol) return std::nullopt;
+    // The distinct x and y coordinates (merged within tol) are the lattice lines.
+    auto lines = [&](int axis) {
+        std::vector<double> v;
+        for (const auto& p : mesh.nodes) v.push_back(p(axis));
+        std::sort(v.begin(), v.end());
+        std::vector<double> out{v.front()};
+        for (double t : v)
+            if (t - out.back() > tol) out.push_back(t);
+        return out;
+    };
+    const auto xs = lines(0), ys = lines(1);
+    Grid g;
+    g.nx = static_cast<int>(xs.size()) - 1;
+    g.ny = static_cast<int>(ys.size()) - 1;
+    if (g.nx < 1 || g.ny < 1 || static_cast<long long>(g.nx + 1) * (g.ny + 1) != mesh.node_count() ||
+        static_cast<long long>(g.nx) * g.ny != mesh.element_count())
+        return std::nullopt;
+    auto index = [&](const std::vector<double>& v, double t) {
+        return static_cast<int>(std::lower_bound(v.begin(), v.end(), t - tol) - v.begin());
+    };
+    std::vector<char> taken((g.nx + 1) * (g.ny + 1), 0);
+    g.lattice_of_node.resize(mesh.node_count());
+    for (int n = 0; n < mesh.node_count(); ++n) {
+        const int k = index(ys, mesh.nodes[n].y()) * (g.nx + 1) + index(xs, mesh.nodes[n].x());
+        if (taken[k]) return std::nullopt;
+        taken[k] = 1;
+        g.lattice_of_node[n] = k;
+    }
+    std::vector<char> used(static_cast<std::size_t>(g.nx) * g.ny, 0);
+    for (const auto& b : mesh.blocks)
+        for (int e = 0; e < b.size(); ++e) {
+            int imin = g.nx, jmin = g.ny, imax = -1, jmax = -1;
+            for (int n : b.element(e)) {
+                const int k = g.lattice_of_node[n], i = k % (g.nx + 1), j = k / (g.nx + 1);
+                imin = std::min(imin, i), imax = std::max(imax, i), jmin = std::min(jmin, j), jmax = std::max(jmax, j);
+            }
+            if (imax != imin + 1 || jmax != jmin + 1) return std::nullopt;  // not one lattice cell
+            const int cell = jmin * g.nx + imin;
+            if (used[cell]) return std::nullopt;
+            used[cell] = 1;
+            g.cell_of_element.push_back(cell);
+        }
+    return g;
+}
+
 Model plane_stress_model(const Mesh& mesh, const ElasticMaterial& material, double thickness) {
     if (mesh.blocks.empty() || mesh.element_count() == 0) throw InputError("topology model: the mesh has no elements");
     const ElementShape shape = mesh.blocks.front().shape;
@@ -106,6 +165,7 @@ Model plane_stress_model(const Mesh& mesh, const ElasticMaterial& material, doub
                 try {
                     m.unique_stiffness.push_back(
                         plane::stiffness(shape, x, material.youngs_modulus, material.poissons_ratio, thickness));
+                    require_finite_stiffness(m.unique_stiffness.back(), material, thickness);
                 } catch (const InputError& err) {
                     throw InputError(fmt::format("block '{}' element {}: {}", b.part, e, err.what()));
                 }
@@ -114,6 +174,7 @@ Model plane_stress_model(const Mesh& mesh, const ElasticMaterial& material, doub
             m.volume.push_back(plane::area(shape, x) * thickness);
         }
     }
+    m.grid = structured_grid(mesh);
     return m;
 }
 

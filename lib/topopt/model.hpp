@@ -6,6 +6,7 @@
 //
 // Element matrices are stored once per distinct element geometry: on a regular grid every element
 // shares one K_e, so building the model costs one element integration, not one per element.
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -25,6 +26,20 @@ enum class Region : signed char {
     Solid = 2,   // held at density 1 (a bolt face, a bone: material that must stay)
 };
 
+/// A structured grid of quadrilaterals: the nodes form an (nx + 1) x (ny + 1) lattice (lattice point
+/// (i, j) has index j (nx + 1) + i) and every element is one lattice cell. The multigrid solver
+/// (topopt/multigrid.hpp) coarsens along it.
+struct Grid {
+    int nx = 0, ny = 0;
+    std::vector<int> lattice_of_node;  // node -> lattice index
+    std::vector<int> cell_of_element;  // element -> cell index j nx + i
+};
+
+/// The grid of a mesh whose Quad4 elements (all blocks, in block order) tile an axis-aligned lattice
+/// in a plane z = const, one element per cell and one node per lattice point (rectangle_quads, a
+/// transfinite Gmsh rectangle); nothing for any other mesh (cut, curved, Quad8, folded).
+std::optional<Grid> structured_grid(const Mesh& mesh);
+
 struct Model {
     int dofs_per_node = 2;
     int node_count = 0;
@@ -37,6 +52,7 @@ struct Model {
     std::vector<Region> region;                     // per element; all Design by default
     std::vector<char> fixed;                        // per DOF: 1 when supported (u = 0)
     std::vector<Eigen::VectorXd> loads;             // load cases, each a global force vector [N]
+    std::optional<Grid> grid;                       // when the mesh is a structured grid (multigrid)
 
     int element_count() const { return static_cast<int>(stiffness_of.size()); }
     int dof_count() const { return node_count * dofs_per_node; }
@@ -65,6 +81,10 @@ struct Model {
         return n;
     }
 };
+
+/// InputError naming E and the thickness when an element matrix is not finite (E = 1e308 Pa
+/// overflows once multiplied by the strain-displacement products); callers add the element.
+void require_finite_stiffness(const Eigen::MatrixXd& k, const ElasticMaterial& material, double thickness);
 
 /// Plane-stress model (2 DOF per node) of every Quad4 or Quad8 element of `mesh` (all blocks, in
 /// block order; one shape for the whole mesh), thickness `thickness`. Element matrices are

@@ -45,6 +45,7 @@ Model shell_model(const Mesh& mesh, const ElasticMaterial& material, double thic
                 try {
                     const auto mats = shell::mitc4_matrices(x, thickness, material);
                     m.unique_stiffness.emplace_back(mats.stiffness);
+                    require_finite_stiffness(m.unique_stiffness.back(), material, thickness);
                 } catch (const InputError& err) {
                     throw InputError(fmt::format("block '{}' element {}: {}", b.part, e, err.what()));
                 }
@@ -54,6 +55,7 @@ Model shell_model(const Mesh& mesh, const ElasticMaterial& material, double thic
             m.stiffness_of.push_back(it->second);
             m.volume.push_back(area * thickness);
         }
+    m.grid = structured_grid(mesh);
     return m;
 }
 

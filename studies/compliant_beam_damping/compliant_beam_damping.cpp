@@ -21,14 +21,17 @@
 #include <algorithm>
 #include <chrono>
 #include <filesystem>
+#include <functional>
 #include <cmath>
 #include <fmt/format.h>
 #include <iostream>
 #include <numbers>
+#include <optional>
 #include <sstream>
 #include <string_view>
 #include <vector>
 
+#include "check/cases.hpp"
 #include "check/study.hpp"
 #include "core/error.hpp"
 #include "core/units.hpp"
@@ -85,10 +88,69 @@ std::vector<double> linspace(double a, double b, int n) {
 // damping alpha on both parts (*DAMPING_PART_MASS, Eq 2-39).
 struct BeamRun {
     SampledSignal tip;          // downward tip deflection (mm), on a uniform 1 ms grid from t = 0
-    RunSummary summary;
+    nlohmann::json summary;     // RunSummary::to_json(): the runs.json record
     std::vector<double> snapshot_times;
     std::vector<std::vector<Vec3>> snapshots;  // node positions (m) at snapshot_times
+    std::string name() const { return summary.at("name").get<std::string>(); }
 };
+
+// What one of Step 5's independent cases returns (check::run_cases runs them at once, and across MPI
+// ranks with the study's MPI build; JSON carries them between ranks, doubles exactly): its explicit
+// runs in the order a serial run makes them, and a bisection's result when the case is one.
+struct CaseOutput {
+    std::vector<BeamRun> runs;
+    std::optional<CriticalAlphaResult> search;
+};
+
+void to_json(nlohmann::json& j, const BeamRun& r) {
+    nlohmann::json snaps = nlohmann::json::array();
+    for (const auto& xs : r.snapshots) {
+        nlohmann::json a = nlohmann::json::array();
+        for (const Vec3& x : xs) a.push_back({x.x(), x.y(), x.z()});
+        snaps.push_back(std::move(a));
+    }
+    j = {{"tip", {{"t0", r.tip.t0}, {"dt", r.tip.dt}, {"x", r.tip.x}}}, {"summary", r.summary},
+         {"snapshot_times", r.snapshot_times}, {"snapshots", std::move(snaps)}};
+}
+void from_json(const nlohmann::json& j, BeamRun& r) {
+    r.tip.t0 = j.at("tip").at("t0").get<double>();
+    r.tip.dt = j.at("tip").at("dt").get<double>();
+    r.tip.x = j.at("tip").at("x").get<std::vector<double>>();
+    r.summary = j.at("summary");
+    r.snapshot_times = j.at("snapshot_times").get<std::vector<double>>();
+    r.snapshots.clear();
+    for (const auto& a : j.at("snapshots")) {
+        std::vector<Vec3> xs;
+        for (const auto& x : a) xs.emplace_back(x.at(0).get<double>(), x.at(1).get<double>(), x.at(2).get<double>());
+        r.snapshots.push_back(std::move(xs));
+    }
+}
+void to_json(nlohmann::json& j, const CaseOutput& c) {
+    j = {{"runs", c.runs}};
+    if (c.search) {
+        nlohmann::json trials = nlohmann::json::array();
+        for (const auto& t : c.search->trials) trials.push_back({t.alpha, t.crossings, t.oscillating});
+        j["search"] = {{"alpha_cr", c.search->alpha_cr}, {"alpha_oscillating", c.search->alpha_oscillating},
+                       {"alpha_non_oscillating", c.search->alpha_non_oscillating},
+                       {"evaluations", c.search->evaluations}, {"converged", c.search->converged}, {"trials", trials}};
+    }
+}
+void from_json(const nlohmann::json& j, CaseOutput& c) {
+    c.runs = j.at("runs").get<std::vector<BeamRun>>();
+    c.search.reset();
+    if (j.contains("search")) {
+        const auto& s = j.at("search");
+        CriticalAlphaResult r;
+        r.alpha_cr = s.at("alpha_cr").get<double>();
+        r.alpha_oscillating = s.at("alpha_oscillating").get<double>();
+        r.alpha_non_oscillating = s.at("alpha_non_oscillating").get<double>();
+        r.evaluations = s.at("evaluations").get<int>();
+        r.converged = s.at("converged").get<bool>();
+        for (const auto& t : s.at("trials"))
+            r.trials.push_back({t.at(0).get<double>(), t.at(1).get<int>(), t.at(2).get<bool>()});
+        c.search = std::move(r);
+    }
+}
 
 struct BeamRunOptions {
     int elements = 20;
@@ -133,7 +195,7 @@ BeamRun run_beam(const BeamData& b, const BeamRunOptions& o) {
             ++next;
         }
     };
-    r.summary = solver.run();
+    r.summary = solver.run().to_json();
     // The history samples fall on the first step at or after each multiple of the interval (within one
     // step, < 4 us); interpolate them linearly onto the exact grid the damping tools expect.
     const History& h = solver.history();
@@ -417,18 +479,42 @@ int main(int argc, char** argv) {
             const double omega_2 = omega_exact * std::pow(beta2 / beta1, 2);  // Euler-Bernoulli, mode 2
             const double t2 = 2 * pi / omega_2;
             const double t_free = beam.load_time + t2;  // analyse from one filter window after release
-            auto run_and_record = [&](const BeamRunOptions& o) {
-                BeamRun r = run_beam(beam, o);
-                study.record_run({o.name, r.summary.to_json()});
-                return r;
+            // The explicit runs of this step fall into two rounds of independent cases, run at once by
+            // check::run_cases (on the cores; across ranks with the study's MPI build): (a) the guess and
+            // (b) the bisection, then everything that needs their alphas. Runs are recorded and checked
+            // afterwards in the order a serial run makes them, with a serial run's bits.
+            auto record = [&](const BeamRun& r) { study.record_run({r.name(), r.summary}); };
+            const double band = 1e-3;
+            CriticalAlphaOptions fe_search{.alpha_lo = 25.0, .alpha_hi = 35.0, .rel_tolerance = 5e-3, .max_evaluations = 14};
+            fe_search.oscillation.t_start = beam.load_time;
+            fe_search.oscillation.final_value = 0.0;
+            fe_search.oscillation.relative_band = band;
+            fe_search.oscillation.min_crossings = 1;
+            // A bisection of (b) as one case: its runs, in order, and its result.
+            auto bisection = [&](int elements, const std::string& prefix) {
+                CaseOutput c;
+                const ResponseFunction fe_beam = [&](double alpha) {
+                    c.runs.push_back(run_beam(beam, {.elements = elements, .alpha = alpha, .end_time = 0.9,
+                                                     .name = fmt::format("{}fe{}-search-{}-alpha-{:.4f}", prefix, elements,
+                                                                         c.runs.size() + 1, alpha)}));
+                    return c.runs.back().tip;
+                };
+                c.search = find_critical_alpha(fe_beam, fe_search);
+                return c;
             };
+            const double alpha_guess = 3.0;
+            const std::vector<CaseOutput> round1 = check::run_cases<CaseOutput>(study, 2, [&](int k) {
+                if (k == 1) return bisection(coarse, "");
+                return CaseOutput{{run_beam(beam, {.elements = coarse, .alpha = alpha_guess, .end_time = 2.0,
+                                                   .name = fmt::format("fe{}-alpha-{}-guess", coarse, alpha_guess)})},
+                                  {}};
+            });
 
             // (a) Fig 2-17, initial guess, and Sec 2.5.2 step 2: log decrement of the FE response at a
             // guess alpha_g gives zeta, and alpha_cr = alpha_g / zeta (exact for one mode: zeta = alpha /
             // 2 omega_1). The same run gives the FE model's omega_1 = omega_d / sqrt(1 - zeta^2).
-            const double alpha_guess = 3.0;
-            const BeamRun guess = run_and_record({.elements = coarse, .alpha = alpha_guess, .end_time = 2.0,
-                                         .name = fmt::format("fe{}-alpha-{}-guess", coarse, alpha_guess)});
+            const BeamRun& guess = round1[0].runs[0];
+            record(guess);
             const auto guess_f = moving_average(guess.tip, t2);
             const auto ld_guess = log_decrement(guess_f, {.t_start = t_free});
             const double omega_fe = ld_guess.omega_n;
@@ -450,20 +536,8 @@ int main(int argc, char** argv) {
             // alpha = 0.9103 x 2 omega_1 ~ 29.8, not 2 omega_1 = 32.7 (which needs an infinitely fine
             // detector). 0.9 s records: the overshoot peaks half a damped period (0.47 s at zeta 0.91)
             // after the outward peak that follows the release.
-            const double band = 1e-3;
-            int search_runs = 0;
-            const ResponseFunction fe_beam = [&](double alpha) {
-                ++search_runs;
-                const BeamRun r = run_and_record({.elements = coarse, .alpha = alpha, .end_time = 0.9,
-                                         .name = fmt::format("fe{}-search-{}-alpha-{:.4f}", coarse, search_runs, alpha)});
-                return r.tip;
-            };
-            CriticalAlphaOptions fe_search{.alpha_lo = 25.0, .alpha_hi = 35.0, .rel_tolerance = 5e-3, .max_evaluations = 14};
-            fe_search.oscillation.t_start = beam.load_time;
-            fe_search.oscillation.final_value = 0.0;
-            fe_search.oscillation.relative_band = band;
-            fe_search.oscillation.min_crossings = 1;
-            const auto cr_fe = find_critical_alpha(fe_beam, fe_search);
+            for (const auto& r : round1[1].runs) record(r);
+            const CriticalAlphaResult& cr_fe = *round1[1].search;
             const double zeta_band = zeta_from_log_decrement(2 * std::log(1 / band));
             study.check("table-2-10/fe/alpha-cr-search", cr_fe.alpha_cr,
                         fmt::format("{} FE runs, bracket [{:.3f}, {:.3f}]; one-mode value with this detector: "
@@ -481,11 +555,57 @@ int main(int argc, char** argv) {
                                     "{:.3f}: {:.4f}; with the thesis's 30: 0.165",
                                     alpha_cr_route, cr_fe.alpha_cr, zeta_beam * cr_fe.alpha_cr));
 
+            // The second round: Fig 2-17's critical curves, Fig 2-18's runs (d), the 100-element run (e)
+            // and, with --full, the several-alpha work on the 100-element model (f), as independent
+            // cases; below, each is recorded and judged where a serial run would.
+            std::vector<double> snap_times;
+            for (int k = 0; k <= 8; ++k) snap_times.push_back(0.1 * k);
+            BeamData small_load = beam;  // (d)'s diagnostic: a tenth of the load
+            small_load.load = beam.load / 10;
+            std::vector<std::function<CaseOutput()>> round2 = {
+                [&] { return CaseOutput{{run_beam(beam, {.elements = coarse, .alpha = cr_fe.alpha_cr, .end_time = 1.2,
+                                                         .name = fmt::format("fe{}-alpha-{:.3f}-critical-search", coarse, cr_fe.alpha_cr)})}, {}}; },
+                [&] { return CaseOutput{{run_beam(beam, {.elements = coarse, .alpha = alpha_cr_route, .end_time = 1.2,
+                                                         .name = fmt::format("fe{}-alpha-{:.3f}-critical-log-decrement", coarse, alpha_cr_route)})}, {}}; },
+                [&] { return CaseOutput{{run_beam(beam, {.elements = coarse, .alpha = alpha_ours, .end_time = beam.total_time,
+                                                         .name = fmt::format("fe{}-alpha-{:.4f}-identified", coarse, alpha_ours)})}, {}}; },
+                [&] { return CaseOutput{{run_beam(beam, {.elements = coarse, .alpha = zeta_beam * alpha_cr_thesis, .end_time = beam.total_time,
+                                                         .name = fmt::format("fe{}-alpha-0.165-thesis", coarse)})}, {}}; },
+                [&] { return CaseOutput{{run_beam(small_load, {.elements = coarse, .alpha = alpha_ours, .end_time = 2.0,
+                                                               .name = fmt::format("fe{}-alpha-{:.4f}-load-0.0003N", coarse, alpha_ours)})}, {}}; },
+                [&] { return CaseOutput{{run_beam(beam, {.elements = fine, .alpha = alpha_ours, .end_time = 0.85,
+                                                         .name = fmt::format("fe{}-alpha-{:.4f}-identified", fine, alpha_ours),
+                                                         .snapshot_times = snap_times, .pvd_path = out / "fig-2-19" / "beam.pvd"})}, {}}; }};
+            // (f), with --full: the guess and then the identified alpha (one case: the second needs the
+            // first), the bisection, and the thesis's alpha, all on 100 elements with 4 s records.
+            if (full) {
+                round2.push_back([&] {
+                    CaseOutput c;
+                    c.runs.push_back(run_beam(beam, {.elements = fine, .alpha = alpha_guess, .end_time = 2.0,
+                                                     .name = fmt::format("full-fe{}-alpha-{}-guess", fine, alpha_guess)}));
+                    const auto ld = log_decrement(moving_average(c.runs[0].tip, t2), {.t_start = t_free});
+                    const double alpha100 = zeta_beam * critical_alpha_from_log_decrement(alpha_guess, ld.zeta);
+                    c.runs.push_back(run_beam(beam, {.elements = fine, .alpha = alpha100, .end_time = beam.total_time,
+                                                     .name = fmt::format("full-fe{}-alpha-{:.4f}-identified", fine, alpha100)}));
+                    return c;
+                });
+                round2.push_back([&] { return bisection(fine, "full-"); });
+                round2.push_back([&] {
+                    return CaseOutput{{run_beam(beam, {.elements = fine, .alpha = zeta_beam * alpha_cr_thesis,
+                                                       .end_time = beam.total_time,
+                                                       .name = fmt::format("full-fe{}-alpha-0.165-thesis", fine)})}, {}};
+                });
+            }
+            const auto wall2 = std::chrono::steady_clock::now();
+            const std::vector<CaseOutput> out2 = check::run_cases<CaseOutput>(
+                study, static_cast<int>(round2.size()), [&](int k) { return round2[k](); }, {.writes_files = {5}});
+            const double wall_round2 = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall2).count();
+
             // Fig 2-17's second curve: the response at alpha_cr of the search (and at 2 omega_1).
-            const BeamRun at_cr = run_and_record({.elements = coarse, .alpha = cr_fe.alpha_cr, .end_time = 1.2,
-                                         .name = fmt::format("fe{}-alpha-{:.3f}-critical-search", coarse, cr_fe.alpha_cr)});
-            const BeamRun at_2w = run_and_record({.elements = coarse, .alpha = alpha_cr_route, .end_time = 1.2,
-                                         .name = fmt::format("fe{}-alpha-{:.3f}-critical-log-decrement", coarse, alpha_cr_route)});
+            const BeamRun& at_cr = out2[0].runs[0];
+            const BeamRun& at_2w = out2[1].runs[0];
+            record(at_cr);
+            record(at_2w);
             {
                 io::Table t;
                 const std::size_t n = at_cr.tip.size();
@@ -504,7 +624,7 @@ int main(int argc, char** argv) {
                     double xmax = 0, xmin = 0;
                     for (std::size_t i = 0; i < r->tip.size(); ++i)
                         if (r->tip.time(i) >= beam.load_time) xmax = std::max(xmax, r->tip.x[i]), xmin = std::min(xmin, r->tip.x[i]);
-                    md << fmt::format("| {} | {:.3f} | {:.2e} |\n", r->summary.name,
+                    md << fmt::format("| {} | {:.3f} | {:.2e} |\n", r->name(),
                                       r == &guess ? alpha_guess : (r == &at_cr ? cr_fe.alpha_cr : alpha_cr_route), std::max(0.0, -xmin) / xmax);
                 }
                 md << "\nBisection trials on the 20-element FE beam (overshoot band 0.1 %, one crossing = oscillation):\n\n"
@@ -517,21 +637,15 @@ int main(int argc, char** argv) {
             // (d) Fig 2-18: the FE tip response with the identified alpha against the SDOF model of
             // Table 2-7: log decrement and frequency of the (filtered) FE record after the release. The
             // same with the thesis's alpha = 0.165, which damps the FE beam at 0.165 / 2 omega_1.
-            const BeamRun ours = run_and_record({.elements = coarse, .alpha = alpha_ours, .end_time = beam.total_time,
-                                        .name = fmt::format("fe{}-alpha-{:.4f}-identified", coarse, alpha_ours)});
-            const BeamRun thesis_alpha = run_and_record({.elements = coarse, .alpha = zeta_beam * alpha_cr_thesis, .end_time = beam.total_time,
-                                                .name = fmt::format("fe{}-alpha-0.165-thesis", coarse)});
+            const BeamRun& ours = out2[2].runs[0];
+            const BeamRun& thesis_alpha = out2[3].runs[0];
+            record(ours);
+            record(thesis_alpha);
             const auto ld_ours = log_decrement(moving_average(ours.tip, t2), {.t_start = t_free});
             // Diagnostic: the same alpha at a tenth of the load (tip amplitude ~10 mm instead of ~95 mm),
             // where the tip deflection is linear in the modal amplitude; 2 s (4.5 cycles) suffice.
-            BeamData small_load = beam;
-            small_load.load = beam.load / 10;
-            const BeamRun small = [&] {
-                BeamRun r = run_beam(small_load, {.elements = coarse, .alpha = alpha_ours, .end_time = 2.0,
-                                                  .name = fmt::format("fe{}-alpha-{:.4f}-load-0.0003N", coarse, alpha_ours)});
-                study.record_run({r.summary.name, r.summary.to_json()});
-                return r;
-            }();
+            const BeamRun& small = out2[4].runs[0];
+            record(small);
             const auto ld_small = log_decrement(moving_average(small.tip, t2), {.t_start = t_free});
             study.check("fig-2-18/fe/zeta-small-amplitude", ld_small.zeta,
                         fmt::format("0.0003 N: {} cycles, amplitude {:.1f} mm, omega_d {:.4f} rad/s; expected alpha / 2 "
@@ -553,11 +667,8 @@ int main(int argc, char** argv) {
 
             // (e) The thesis's mesh: 100 elements at the identified alpha, 0.85 s (the load and 1.7 periods
             // of free vibration): omega_d from the extrema spacing, the Fig 2-19 snapshots and a PVD series.
-            std::vector<double> snap_times;
-            for (int k = 0; k <= 8; ++k) snap_times.push_back(0.1 * k);
-            const BeamRun fine_run = run_and_record({.elements = fine, .alpha = alpha_ours, .end_time = 0.85,
-                                            .name = fmt::format("fe{}-alpha-{:.4f}-identified", fine, alpha_ours),
-                                            .snapshot_times = snap_times, .pvd_path = out / "fig-2-19" / "beam.pvd"});
+            const BeamRun& fine_run = out2[5].runs[0];
+            record(fine_run);
             const double omega_fine = omega_d_from_extrema(moving_average(fine_run.tip, t2), t_free);
             // The 20-element run measured over the same window (the frequency rises slightly with the
             // amplitude, so a longer window would compare different amplitudes).
@@ -621,28 +732,20 @@ int main(int argc, char** argv) {
                 std::filesystem::remove(out / "full-runs.md");
             }
             if (full) {
-                const auto wall0 = std::chrono::steady_clock::now();
-                const BeamRun guess100 = run_and_record({.elements = fine, .alpha = alpha_guess, .end_time = 2.0,
-                                                         .name = fmt::format("full-fe{}-alpha-{}-guess", fine, alpha_guess)});
+                const BeamRun& guess100 = out2[6].runs[0];
+                const BeamRun& ours100 = out2[6].runs[1];
+                const CaseOutput& search100 = out2[7];
+                const BeamRun& thesis100 = out2[8].runs[0];
+                record(guess100);
+                for (const auto& r : search100.runs) record(r);
+                record(ours100);
+                record(thesis100);
                 const auto ld_g100 = log_decrement(moving_average(guess100.tip, t2), {.t_start = t_free});
                 const double route100 = critical_alpha_from_log_decrement(alpha_guess, ld_g100.zeta);
-                int runs100 = 0;
-                const ResponseFunction fe100 = [&](double alpha) {
-                    ++runs100;
-                    return run_and_record({.elements = fine, .alpha = alpha, .end_time = 0.9,
-                                           .name = fmt::format("full-fe{}-search-{}-alpha-{:.4f}", fine, runs100, alpha)})
-                        .tip;
-                };
-                const auto cr100 = find_critical_alpha(fe100, fe_search);
+                const CriticalAlphaResult& cr100 = *search100.search;
                 const double alpha100 = zeta_beam * route100;
-                const BeamRun ours100 = run_and_record({.elements = fine, .alpha = alpha100, .end_time = beam.total_time,
-                                                        .name = fmt::format("full-fe{}-alpha-{:.4f}-identified", fine, alpha100)});
-                const BeamRun thesis100 = run_and_record({.elements = fine, .alpha = zeta_beam * alpha_cr_thesis,
-                                                          .end_time = beam.total_time,
-                                                          .name = fmt::format("full-fe{}-alpha-0.165-thesis", fine)});
                 const auto ld_o100 = log_decrement(moving_average(ours100.tip, t2), {.t_start = t_free});
                 const auto ld_t100 = log_decrement(moving_average(thesis100.tip, t2), {.t_start = t_free});
-                const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
                 std::ostringstream md;
                 md << "| Step 5 quantity | 20 elements (CTest, judged) | 100 elements, 4 s (--full, shown) |\n"
                       "|---|---|---|\n";
@@ -654,8 +757,10 @@ int main(int argc, char** argv) {
                 md << fmt::format("| zeta at that alpha, 4 s record | {:.5f} | {:.5f} |\n", ld_ours.zeta, ld_o100.zeta);
                 md << fmt::format("| omega_d at that alpha (rad/s) | {:.4f} | {:.4f} |\n", ld_ours.omega_d, ld_o100.omega_d);
                 md << fmt::format("| zeta at the thesis's alpha = 0.165 | {:.5f} | {:.5f} |\n", ld_thesis.zeta, ld_t100.zeta);
-                md << fmt::format("\nThe 100-element runs took {:.0f} s of wall time ({} runs; steps of {:.3g} us).\n", wall,
-                                  4 + runs100, 1e6 * ours100.summary.first_dt);
+                md << fmt::format("\nThe 100-element runs ({} of them; steps of {:.3g} us) ran as three of the {} cases of "
+                                  "the second round, which took {:.0f} s of wall time with up to {} at once.\n",
+                                  4 + static_cast<int>(search100.runs.size()), 1e6 * ours100.summary.at("first_dt_s").get<double>(),
+                                  round2.size(), wall_round2, check::case_jobs(study));
                 study.write_markdown("full-runs.md", md.str());
                 io::Table t;
                 std::vector<double> time(ours100.tip.size());

@@ -28,6 +28,8 @@
 #include <cstdlib>
 #include <cmath>
 #include <fmt/format.h>
+#include <functional>
+#include <limits>
 #include <iostream>
 #include <map>
 #include <numbers>
@@ -43,6 +45,7 @@
 #include "assembly/model.hpp"
 #include "check/study.hpp"
 #include "core/error.hpp"
+#include "core/program.hpp"
 #include "core/units.hpp"
 #include "damping/identification.hpp"
 #include "damping/log_decrement.hpp"
@@ -125,6 +128,9 @@ std::pair<double, double> powerfit(const std::vector<double>& x, const std::vect
 struct StepInfo {
     double table_2_1 = 0.0;  // smallest Table 2-1 step (tet10: from the corner tetrahedron)
     double element_eigen = 0.0;  // tet10: 2 / largest element eigenfrequency with lumped (HRZ) mass
+    // tet10: Table 2-1's tetrahedron step on the 8 straight sub-tetrahedra of the 10 nodes
+    // (cfl::tet10_subtetrahedron_length), the rule that gives the thesis's Case C step (README).
+    double sub_tetrahedra = 0.0;
 };
 
 /// Smallest critical step over the solids of a mesh: Table 2-1 through fem::cfl (what the explicit
@@ -134,13 +140,15 @@ struct StepInfo {
 /// mid-edge nodes, which raise the element's top frequency.
 StepInfo smallest_steps(const Mesh& mesh) {
     StepInfo s;
-    s.table_2_1 = s.element_eigen = std::numeric_limits<double>::infinity();
+    s.table_2_1 = s.element_eigen = s.sub_tetrahedra = std::numeric_limits<double>::infinity();
     for (int b = 0; b < static_cast<int>(mesh.blocks.size()); ++b) {
         const auto shape = mesh.blocks[b].shape;
         for (int e = 0; e < mesh.blocks[b].size(); ++e) {
             const auto x = mesh.element_coordinates(b, e);
             s.table_2_1 = std::min(s.table_2_1, cfl::critical_time_step(shape, x, kRubber));
             if (shape == ElementShape::Tet10) {
+                s.sub_tetrahedra = std::min(s.sub_tetrahedra, cfl::solid_time_step(cfl::tet10_subtetrahedron_length(x),
+                                                                                    cfl::wave_speed(shape, kRubber), 0.0, {}));
                 const Eigen::MatrixXd K = solid::tet10_stiffness(x, kRubber);
                 const Eigen::MatrixXd M = solid::tet10_mass(x, kRubber.density, solid::MassKind::Lumped);
                 const Eigen::VectorXd d = M.diagonal().cwiseSqrt().cwiseInverse();
@@ -151,6 +159,7 @@ StepInfo smallest_steps(const Mesh& mesh) {
         }
     }
     if (!std::isfinite(s.element_eigen)) s.element_eigen = s.table_2_1;
+    if (!std::isfinite(s.sub_tetrahedra)) s.sub_tetrahedra = s.table_2_1;
     return s;
 }
 
@@ -342,13 +351,33 @@ double peak_stress(const ImpulseResult& r, double t_end) {
 // resting (the force pushed it until then), and a non-oscillating response from such a state,
 // x(t) = (x0 + (v0 + omega x0) t) e^(-omega t) at critical damping or slower beyond, never reaches the
 // other side of its rest position.
-damping::OscillationOptions oscillation_criterion(double t_start) {
+damping::OscillationOptions oscillation_criterion(double t_start, double band = 0.003) {
     damping::OscillationOptions o;
     o.t_start = t_start;
     o.final_value = 0.0;
-    o.relative_band = 0.003;
+    o.relative_band = band;
     o.min_crossings = 1;
     return o;
+}
+
+/// Sec 2.5.2 step 1 on the explicit finger: bisection on alpha between an oscillating and a
+/// non-oscillating tip response, first guesses bracketing 0.7..1 x beam theory's 2 omega_1 (moved
+/// outward when they do not bracket). `band`: the oscillation detector's resolution (0.3 % of the peak);
+/// `rel_tolerance`: the bisection's final bracket. `seen` is told of every run.
+damping::CriticalAlphaResult search_alpha_cr(const ImpulseRun& r, const std::function<void(const ImpulseResult&, double)>& seen,
+                                             double band = 0.003, double rel_tolerance = 0.03) {
+    const double w1 = euler_bernoulli_omega(r.length);
+    damping::CriticalAlphaOptions o;
+    o.alpha_lo = 0.7 * 2 * w1;
+    o.alpha_hi = 1.0 * 2 * w1;
+    o.rel_tolerance = rel_tolerance;
+    o.oscillation = oscillation_criterion(r.pulse, band);
+    const auto response = [&](double alpha) {
+        ImpulseResult res = run_impulse(r, alpha);
+        seen(res, alpha);
+        return res.tip;
+    };
+    return damping::find_critical_alpha(response, o);
 }
 
 /// The coarse hexahedral finger of the alpha_cr searches: the O-grid cross-section lib/mesh picks
@@ -361,9 +390,128 @@ Mesh search_mesh(double length) {
                               std::max(4, static_cast<int>(std::lround(length / (10 * mm)))));
 }
 
+// --- Table 3-2: which tet10 step rule gives the thesis's 1.26 and 0.22 us --------------------------------
+// The thesis ran LS-DYNA (SOLID168 = its 10-node tetrahedron, element type 16) and prints 0.9 x the
+// step ("numerical time step"); Table 2-1 gives only the 4-node rule (minimum altitude). Candidate
+// rules for one tet10, each 0.9 x the step at rest: Table 2-1 on the corner tetrahedron (fem::cfl,
+// the library's rule), Table 2-1 on the 8 straight sub-tetrahedra of the 10 nodes, the hexahedron's
+// V / A_max applied to the corner tetrahedron (= its altitude / 3), the element's own eigenvalue bound
+// with HRZ-lumped mass, and beside them the whole model's true limit 2 / omega_max. Meshes: the
+// study's and other Gmsh meshes of the same finger.
+int tet_step_rules() {
+    const double c = cfl::wave_speed(ElementShape::Tet10, kRubber);
+    const double L45 = 4.5 * inch;
+    const auto cases = finger::table_3_2_cases();
+    struct Variant {
+        std::string name;
+        std::function<Mesh()> make;
+    };
+    auto c_mesh = [&](finger::TetOptions o) {
+        return [=] { return finger::tet_finger({kA, kB, L45}, o); };
+    };
+    finger::TetOptions base;
+    base.element_length = cases[2].element_length;
+    base.order = 2;
+    std::vector<Variant> variants;
+    variants.push_back({"C: the study's mesh (Gmsh Delaunay + optimiser, mean-volume 4 mm)", [&] { return finger::mesh_case(cases[2]); }});
+    {
+        finger::TetOptions o = base;
+        o.match_mean_volume = false;
+        variants.push_back({"C: Gmsh size 4 mm as asked (no mean-volume correction)", c_mesh(o)});
+        o = base;
+        o.optimize = false;
+        variants.push_back({"C: Delaunay without the optimiser", c_mesh(o)});
+        o = base;
+        o.algorithm_3d = 10;
+        variants.push_back({"C: HXT", c_mesh(o)});
+        o = base;
+        o.algorithm_3d = 10;
+        o.optimize = false;
+        variants.push_back({"C: HXT without the optimiser", c_mesh(o)});
+    }
+    variants.push_back({"D: the study's reconstructed detailed finger (2.8 mm)", [&] { return finger::mesh_case(cases[3]); }});
+    {
+        // The one dimensioned detail of the real finger: the tip magnet's pocket (Sec 3.4).
+        finger::DetailedFinger dg;
+        dg.body = {kA, kB, L45};
+        dg.magnet_pocket = true;
+        finger::TetOptions o = base;
+        o.element_length = cases[3].element_length;
+        variants.push_back({"D: with the tip magnet's pocket (4 mm radius, 1.65 mm deep)", [=] { return finger::detailed_finger(dg, o); }});
+        finger::DetailedFinger dn = dg;
+        dn.magnet_pocket = false;
+        o.optimize = false;
+        variants.push_back({"D: Delaunay without the optimiser", [=] { return finger::detailed_finger(dn, o); }});
+    }
+    fmt::print("Table 3-2 tet10 steps, 0.9 L_e / c_w with c_w = {:.1f} m/s (thesis: C 1.26 us, D 0.22 us)\n", c);
+    fmt::print("{:<70} {:>6} {:>6} | {:>9} {:>9} {:>9} {:>9} | {:>9}\n", "mesh", "nodes", "elems", "corner", "8 sub-tet", "V/A_max",
+               "element", "whole");
+    for (const auto& v : variants) {
+        try {
+            const Mesh mesh = v.make();
+            const StepInfo r = smallest_steps(mesh);
+            fmt::print("{:<70} {:>6} {:>6} | {:>9} {:>9} {:>9} {:>9} | {:>9}\n", v.name, mesh.node_count(), mesh.element_count(),
+                       fmt_us(0.9 * r.table_2_1), fmt_us(0.9 * r.sub_tetrahedra), fmt_us(0.9 * r.table_2_1 / 3),
+                       fmt_us(0.9 * r.element_eigen), fmt_us(0.9 * global_step(mesh)));
+        } catch (const std::runtime_error& e) {  // InputError, SolverError: a mesher's bad element (an inverted tet10) is a result here, not the end
+            fmt::print("{:<70} refused: {}\n", v.name, e.what());
+        }
+        std::fflush(stdout);
+    }
+    return 0;
+}
+
+// --alpha-cr-scatter: how far the search's alpha_cr (Table 3-3) moves with the things the model leaves
+// open: the mesh (the study's coarse search mesh against a 4 mm O-grid), the detector's band (0.1, 0.3,
+// 1 % of the peak) and the bisection's final bracket (3 % against 1 %). The tolerance of
+// table-3-3/alpha-cr comes from it (README "Table 3-3: how tight can alpha_cr be judged").
+int alpha_cr_scatter() {
+    struct Variant {
+        std::string name;
+        bool fine_mesh;
+        double band, bracket;
+    };
+    const std::vector<Variant> variants = {{"study: search mesh, band 0.3 %, bracket 3 %", false, 0.003, 0.03},
+                                           {"bracket 1 %", false, 0.003, 0.01},
+                                           {"band 0.1 %", false, 0.001, 0.03},
+                                           {"band 1 %", false, 0.01, 0.03},
+                                           {"4 mm O-grid (4 mm layers)", true, 0.003, 0.03}};
+    fmt::print("alpha_cr (1/s) by the automated search; thesis 350, 160, 90, 50; beam theory 2 omega_1 in the last row\n");
+    fmt::print("{:<46} {:>16} {:>16} {:>16} {:>16}\n", "variant", "3 in", "4.5 in", "6 in", "8 in");
+    for (const Variant& v : variants) {
+        fmt::print("{:<46}", v.name);
+        for (int i = 0; i < 4; ++i) {
+            const double L = kLengthsInch[i] * inch, w1 = euler_bernoulli_omega(L);
+            const Mesh mesh = v.fine_mesh ? finger::hex_finger({kA, kB, L}, 4 * mm) : search_mesh(L);
+            // A smaller band waits for a later, smaller overshoot: a longer record.
+            const ImpulseRun r = impulse_run(fmt::format("scatter {}-inch", kLengthsInch[i]), mesh, L, (v.band < 0.002 ? 13.0 : 10.0) / w1);
+            const auto cr = search_alpha_cr(r, [](const ImpulseResult&, double) {}, v.band, v.bracket);
+            fmt::print(" {:>8.1f} ({:+5.1f}%)", cr.alpha_cr, 100 * (cr.alpha_cr / kAlphaCr[i] - 1));
+            std::fflush(stdout);
+        }
+        fmt::print("\n");
+    }
+    fmt::print("{:<46}", "modal 2 omega_1, search mesh / 4 mm O-grid");
+    for (int i = 0; i < 4; ++i) {
+        const double L = kLengthsInch[i] * inch;
+        const double a = 2 * std::sqrt(finger_modes(search_mesh(L), 1).result.eigenvalues[0]);
+        const double b = 2 * std::sqrt(finger_modes(finger::hex_finger({kA, kB, L}, 4 * mm), 1).result.eigenvalues[0]);
+        fmt::print(" {:>7.1f}/{:<7.1f}", a, b);
+    }
+    fmt::print("\n{:<46}", "beam theory 2 omega_1");
+    for (int i = 0; i < 4; ++i) fmt::print(" {:>8.1f} ({:+5.1f}%)", 2 * euler_bernoulli_omega(kLengthsInch[i] * inch),
+                                          100 * (2 * euler_bernoulli_omega(kLengthsInch[i] * inch) / kAlphaCr[i] - 1));
+    fmt::print("\n");
+    return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
+    if (argc >= 2 && std::string(argv[1]) == "--tet-step-rules")
+        return run_program("finger_damping --tet-step-rules", [] { return tet_step_rules(); });
+    if (argc >= 2 && std::string(argv[1]) == "--alpha-cr-scatter")
+        return run_program("finger_damping --alpha-cr-scatter", [] { return alpha_cr_scatter(); });
     return check::run_study("finger_damping", argc, argv, [](check::Study& study) {
         const auto& out = study.results_dir();
         // Case D's explicit window (Table 3-2 runs below): 1 ms under CTest; --full (make all) runs it
@@ -517,7 +665,9 @@ int main(int argc, char** argv) {
         // elements per section, 29 layers; 5900 = 100 x 59: 9 x 9, 58 layers); C is a Gmsh tet10 mesh
         // of the same cylinder at 4 mm; D the reconstructed detailed finger (root taper, ribs) at
         // 2.8 mm. Time step: 0.9 x the smallest element step (Eq 2-27), Table 2-1 for hexahedra; for
-        // the tet10 meshes both Table 2-1 (corner tetrahedron) and the element-eigenvalue bound.
+        // the tet10 meshes Table 2-1 on the 8 sub-tetrahedra (the rule that gives the thesis's Case C,
+        // --tet-step-rules), beside the corner tetrahedron, the element eigenvalue bound and the whole
+        // mesh's limit.
         const double L45 = 4.5 * inch;
         const finger::EllipticCylinder g45{kA, kB, L45};
         const auto cases = finger::table_3_2_cases();
@@ -528,7 +678,7 @@ int main(int argc, char** argv) {
         case_mesh.push_back(finger::mesh_case(cases[3]));
         const std::vector<std::string> ids = {"A", "B", "C", "D"};
         const std::vector<double> thesis_dt = {4.04, 1.43, 1.26, 0.22};
-        std::vector<double> dt(4), dt_t21(4), dt_global(4), omega1(4);
+        std::vector<double> dt(4), dt_t21(4), dt_element(4), dt_global(4), omega1(4);
         for (int i = 0; i < 4; ++i) {
             const Mesh& mesh = case_mesh[i];
             std::string node_note;
@@ -546,13 +696,17 @@ int main(int argc, char** argv) {
             study.check("table-3-2/" + ids[i] + "/elements", mesh.element_count());
             const StepInfo s = smallest_steps(mesh);
             dt_t21[i] = 0.9 * s.table_2_1;
-            dt[i] = 0.9 * s.element_eigen;  // hexahedra: equals Table 2-1
+            dt_element[i] = 0.9 * s.element_eigen;  // hexahedra: equals Table 2-1
+            // The thesis's step rule for tet10 (README, finger_damping --tet-step-rules): Table 2-1 on
+            // the 8 sub-tetrahedra of the 10 nodes; hexahedra: Table 2-1 (V / A_max).
+            dt[i] = 0.9 * s.sub_tetrahedra;
             dt_global[i] = i < 2 ? dt[i] : 0.9 * global_step(mesh);
             const std::string note = i < 2 ? "0.9 x Table 2-1 (V / A_max) at rest"
-                                           : fmt::format("0.9 x 2/omega_max of the worst tet10 element (a safe bound); the whole mesh's "
-                                                         "omega_max (Lanczos, lumped mass) allows {} us; Table 2-1 on the corner "
-                                                         "tetrahedron gives {} us ({:.2f} x the true limit: optimistic for quadratic tetrahedra)",
-                                                         fmt_us(dt_global[i]), fmt_us(dt_t21[i]), dt_t21[i] / dt_global[i]);
+                                           : fmt::format("0.9 x Table 2-1's tetrahedron step on the 8 sub-tetrahedra of the 10 nodes, the "
+                                                         "worst element; other rules on the same mesh: Table 2-1 on the corner tetrahedron "
+                                                         "{} us, the worst element's own eigenvalue bound {} us, the whole mesh's true limit "
+                                                         "(Lanczos, lumped mass) {} us",
+                                                         fmt_us(dt_t21[i]), fmt_us(dt_element[i]), fmt_us(dt_global[i]));
             study.check("table-3-2/" + ids[i] + "/dt", dt[i] / us, note);
             const Modes m = finger_modes(mesh, 1);
             record_modal("table-3-2 modal case " + ids[i], mesh, m);
@@ -569,8 +723,12 @@ int main(int argc, char** argv) {
         const bool order = dt[0] > dt[1] && dt[1] > dt[2] && dt[2] > dt[3];
         study.trend_holds("table-3-2/dt-order", order,
                           fmt::format("dt A {} > B {} > C {} > D {} us", fmt_us(dt[0]), fmt_us(dt[1]), fmt_us(dt[2]), fmt_us(dt[3])),
-                          fmt::format("with the whole-mesh limit for C, D: {}, {} us; with Table 2-1's corner-tetrahedron rule: {}, {} us",
-                                      fmt_us(dt_global[2]), fmt_us(dt_global[3]), fmt_us(dt_t21[2]), fmt_us(dt_t21[3])));
+                          fmt::format("the steps by the thesis's rules (Table 2-1; tet10 on its 8 sub-tetrahedra); with the whole-mesh "
+                                      "limit that our explicit solver takes for C, D ({}, {} us) the order is not the thesis's: C's "
+                                      "step exceeds B's; with Table 2-1's corner-tetrahedron rule: {}, {} us; with the element "
+                                      "eigenvalue bound: {}, {} us",
+                                      fmt_us(dt_global[2]), fmt_us(dt_global[3]), fmt_us(dt_t21[2]), fmt_us(dt_t21[3]),
+                                      fmt_us(dt_element[2]), fmt_us(dt_element[3])));
         study.trend_holds("table-3-2/obs-1/tet-smaller-than-hex", dt[2] < dt[0],
                           fmt::format("C {} us < A {} us ({:.2f} x more steps)", fmt_us(dt[2]), fmt_us(dt[0]), dt[0] / dt[2]));
         study.trend_holds("table-3-2/obs-5/detailed-stiffer",
@@ -726,22 +884,24 @@ int main(int argc, char** argv) {
         {
             std::ostringstream md;
             md << "# Table 3-2: finger modelling comparison (4.5-inch finger), thesis beside ours\n\n"
-               << "| case | model | nodes (thesis) | elements (thesis) | dt us (thesis) | dt us, whole mesh | dt us, Table 2-1 | steps to 0.2 s (thesis) | "
-                  "ratio (thesis) | omega_1 rad/s | zeta_1 at alpha 180 |\n"
-               << "|---|---|---|---|---|---|---|---|---|---|---|\n";
+               << "| case | model | nodes (thesis) | elements (thesis) | dt us (thesis) | dt us, whole mesh | dt us, Table 2-1 corner | "
+                  "dt us, element bound | steps to 0.2 s (thesis) | ratio (thesis) | omega_1 rad/s | zeta_1 at alpha 180 |\n"
+               << "|---|---|---|---|---|---|---|---|---|---|---|---|\n";
             const std::vector<int> tn = {1080, 5900, 7481, 36782}, te = {725, 4698, 4682, 23147};
             for (int i = 0; i < 4; ++i) {
                 const double steps = std::ceil(0.2 / dt[i]), steps_a = std::ceil(0.2 / dt[0]);
                 const double th_steps = std::round(0.2 / (thesis_dt[i] * us)), th_a = std::round(0.2 / (thesis_dt[0] * us));
-                md << fmt::format("| {} | {} | {} ({}) | {} ({}) | {} ({}) | {} | {} | {:.0f} ({:.0f}) | {:.2f} ({:.2f}) | {:.1f} | {:.3f} |\n",
+                md << fmt::format("| {} | {} | {} ({}) | {} ({}) | {} ({}) | {} | {} | {} | {:.0f} ({:.0f}) | {:.2f} ({:.2f}) | {:.1f} | {:.3f} |\n",
                                   ids[i], cases[i].description, case_mesh[i].node_count(), tn[i], case_mesh[i].element_count(), te[i],
-                                  fmt_us(dt[i]), thesis_dt[i], fmt_us(dt_global[i]), fmt_us(dt_t21[i]), steps, th_steps, steps / steps_a, th_steps / th_a,
-                                  omega1[i], alpha_case / (2 * omega1[i]));
+                                  fmt_us(dt[i]), thesis_dt[i], fmt_us(dt_global[i]), fmt_us(dt_t21[i]), fmt_us(dt_element[i]), steps, th_steps,
+                                  steps / steps_a, th_steps / th_a, omega1[i], alpha_case / (2 * omega1[i]));
             }
-            md << "\nOur dt: 0.9 x the smallest element step at rest; hexahedra by Table 2-1 (V / A_max), tet10 by the element "
-                  "eigenvalue bound (2 / omega_max of the worst element with HRZ-lumped mass: safe). 'Whole mesh': 0.9 x 2 / omega_max "
-                  "of the assembled lumped-mass model (the true limit). 'Table 2-1': the corner-tetrahedron altitude rule of fem::cfl, "
-                  "optimistic for tet10. Steps and ratio use our dt column.\n\n"
+            md << "\nOur dt: 0.9 x the smallest element step at rest; hexahedra by Table 2-1 (V / A_max), tet10 by Table 2-1's "
+                  "tetrahedron rule on the 8 straight sub-tetrahedra of its 10 nodes, the rule that gives the thesis's Case C step "
+                  "(README). 'Whole mesh': 0.9 x 2 / omega_max of the assembled lumped-mass model (the true limit, which our explicit "
+                  "solver takes). 'Table 2-1 corner': the corner-tetrahedron altitude rule of fem::cfl, optimistic for tet10. 'Element "
+                  "bound': 2 / omega_max of the worst element with HRZ-lumped mass (safe, conservative). Steps and ratio use our dt "
+                  "column.\n\n"
                << "## The explicit runs (tip impulse, alpha = 180 1/s)\n\n"
                << "| case | elements | simulated ms | solver dt us: first, min (thesis) | steps | steps to 0.2 s, ratio to A (thesis) | wall s "
                   "(+ set-up) | element-cycles/s | wall s for 0.2 s (projected), ratio to A | peak tip mm | peak max von Mises MPa | "
@@ -782,18 +942,10 @@ int main(int argc, char** argv) {
             // period after the pulse, pi / (0.475 omega_1) = 6.6 / omega_1), with room for an FE
             // omega_1 a little below beam theory's.
             const ImpulseRun r = impulse_run(fmt::format("table-3-3 {}-inch", kLengthsInch[i]), search_mesh(L), L, 10.0 / w1);
-            damping::CriticalAlphaOptions o;
-            o.alpha_lo = 0.7 * 2 * w1;
-            o.alpha_hi = 1.0 * 2 * w1;
-            o.rel_tolerance = 0.03;
-            o.oscillation = oscillation_criterion(r.pulse);
-            const auto response = [&](double alpha) {
-                ImpulseResult res = run_impulse(r, alpha);
+            const auto cr = search_alpha_cr(r, [&](const ImpulseResult& res, double alpha) {
                 study.record_run({res.summary.name, res.summary.to_json()});
                 trials[i][alpha] = res.tip;
-                return res.tip;
-            };
-            const auto cr = damping::find_critical_alpha(response, o);
+            });
             alpha_cr[i] = cr.alpha_cr;
             const Modes m = finger_modes(r.mesh, 1);
             two_omega_fe[i] = 2 * std::sqrt(m.result.eigenvalues[0]);
@@ -848,13 +1000,25 @@ int main(int argc, char** argv) {
                                           kAlpha[1] / alpha_cr[1], kAlpha[2] / alpha_cr[2], kAlpha[3] / alpha_cr[3]));
             const auto [c, p] = powerfit(kLengthsInch, alpha_cr);
             study.check("eq-3-3/model-exponent", p, fmt::format("our fit: alpha_cr = {:.1f} x^{:.3f}", c, p));
-            const bool near2 = std::abs(p + 2) < 0.15 && std::abs(-1.983 + 2) < 0.05;
-            study.trend_holds("eq-3-3/beam-theory", near2,
-                              fmt::format("exponent near -2: ours {:.3f}, thesis -1.983; Euler-Bernoulli omega_1 = 1.875^2 / L^2 "
-                                          "sqrt(EI / rho A) ~ L^-2 exactly, and alpha_cr = 2 omega_1",
-                                          p),
-                              "a stubby finger bends also in shear, which lowers omega_1 of the short fingers and flattens the "
-                              "slope slightly above -2");
+            // Why the exponent is near -2, on our model: (i) the search's alpha_cr is a fixed fraction
+            // of the same model's 2 omega_n (log decrement) at every length, within the bisection's 3 %
+            // bracket, and (ii) 2 omega_n itself goes as L^-2 (power-fit exponent within 0.1 of -2).
+            std::vector<double> fraction(4);
+            for (int i = 0; i < 4; ++i) fraction[i] = alpha_cr[i] / alpha_cr_ld[i];
+            const double fmin = *std::min_element(fraction.begin(), fraction.end()), fmax = *std::max_element(fraction.begin(), fraction.end());
+            const double p_omega = powerfit(kLengthsInch, alpha_cr_ld).second;
+            const bool proportional = fmax <= 1.03 * fmin, square = std::abs(p_omega + 2) < 0.1;
+            study.trend_holds("eq-3-3/beam-theory", proportional && square,
+                              fmt::format("alpha_cr / 2 omega_n = {:.3f}, {:.3f}, {:.3f}, {:.3f} ({}within 3 %); 2 omega_n ~ L^{:.3f} ({}within 0.1 "
+                                          "of -2): {}",
+                                          fraction[0], fraction[1], fraction[2], fraction[3], proportional ? "" : "not ", p_omega,
+                                          square ? "" : "not ",
+                                          proportional && square ? "exponent near -2: omega_1 ~ 1/L^2 and alpha_cr proportional to 2 omega_1"
+                                                                 : "not explained"),
+                              fmt::format("our alpha_cr exponent {:.3f}, the thesis's -1.983; Euler-Bernoulli omega_1 = 1.875^2 / L^2 sqrt(EI / "
+                                          "rho A) ~ L^-2 exactly; a stubby finger bends also in shear, which lowers omega_1 of the short "
+                                          "fingers and flattens the slope slightly above -2",
+                                          p));
             io::Table t;
             std::vector<double> beam;
             for (double x : kLengthsInch) beam.push_back(2 * euler_bernoulli_omega(x * inch));

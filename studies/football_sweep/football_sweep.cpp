@@ -75,56 +75,9 @@ Scene football_scene(const Case& c, Variant v, double t0 = 0.0) {
     return football::scene(c, v);
 }
 
-// Per-cycle bookkeeping: the solver calls force providers every cycle in order, and this one is
-// added after the contact pairs, so it sees this cycle's contact forces. Adds no force.
-class ContactProbe final : public ForceProvider {
-public:
-    explicit ContactProbe(const HandModel& hm) : hm_(hm) {}
-    std::string name() const override { return "contact probe"; }
-    void add_forces(double t, const NodalState&, std::vector<Vec3>&, std::vector<Vec3>&) override {
-        const double dt = t - t_prev_;
-        t_prev_ = t;
-        // Force on each finger from the football (fingers on football: pass 0 = finger nodes on
-        // football faces, force on the finger; pass 1 = football nodes on finger faces, reaction).
-        std::map<std::string, Vec3> on;
-        const bool ball = !hm_.scene().objects.empty();
-        for (const auto& c : ball ? hm_.contact("fingers on football").contacts() : std::vector<contact::ContactPoint>{}) {
-            const auto& fc = hm_.contact("fingers on football");
-            const Vec3 f = c.normal_force * c.normal + c.tangential_force;
-            // (try_emplace with zero: a default-constructed Eigen vector is uninitialised)
-            if (c.pass == 0) on.try_emplace(hm_.finger_of_node(c.node), Vec3::Zero()).first->second += f;
-            else on.try_emplace(hm_.finger_of_block(fc.slave_surface().segments[c.segment].block), Vec3::Zero()).first->second -= f;
-        }
-        for (const auto& [finger, f] : on) {
-            auto& r = per_finger[finger];
-            r.impulse += f.norm() * dt;
-            r.time += dt;
-            if (r.first < 0) r.first = t;
-            r.last = t;
-        }
-        for (const auto& p : hm_.pairs()) {
-            auto& r = per_pair[p.name];
-            const Vec3& F = p.contact->force_on_master();
-            r.impulse += F.norm() * dt;
-            if (!p.contact->contacts().empty()) {
-                r.time += dt;
-                if (r.first < 0) r.first = t;
-                r.last = t;
-            }
-            for (const auto& c : p.contact->contacts()) {
-                const double frac = -c.gap / p.element_size;
-                if (frac > r.max_penetration_fraction) r.max_penetration_fraction = frac, r.max_penetration = -c.gap, r.at = t;
-            }
-        }
-    }
-    struct PerPair {
-        double impulse = 0, time = 0, first = -1, last = -1, max_penetration = 0, max_penetration_fraction = 0, at = 0;
-    };
-    std::map<std::string, PerPair> per_pair, per_finger;
-
-private:
-    const HandModel& hm_;
-    double t_prev_ = 0.0;
+// Contact statistics per pair and per finger, accumulated every cycle by the observer.
+struct PerPair {
+    double impulse = 0, time = 0, first = -1, last = -1, max_penetration = 0, max_penetration_fraction = 0, at = 0;
 };
 
 // --- one run --------------------------------------------------------------------------------------
@@ -141,7 +94,7 @@ struct Record {
     std::vector<double> t, x, y, z, rel_x, s_ball, s_ball_cfc, s_fingers;   // rows every kRow
     std::map<std::string, std::vector<double>> tip_y, impulse;
     std::map<std::string, double> lag, min_clearance;                       // per finger / finger pair
-    std::map<std::string, ContactProbe::PerPair> pairs, fingers;
+    std::map<std::string, PerPair> pairs, fingers;
     std::vector<double> snap_t;
     std::vector<std::vector<double>> snap_x;                                // node coordinates (flat)
     double y0 = 0, window = 0, s_cfc_max = 0, s_raw_max = 0;
@@ -150,10 +103,10 @@ struct Record {
     json summary;
 };
 
-json pair_json(const ContactProbe::PerPair& p) {
+json pair_json(const PerPair& p) {
     return {p.impulse, p.time, p.first, p.last, p.max_penetration, p.max_penetration_fraction, p.at};
 }
-ContactProbe::PerPair pair_from(const json& a) { return {a[0], a[1], a[2], a[3], a[4], a[5], a[6]}; }
+PerPair pair_from(const json& a) { return {a[0], a[1], a[2], a[3], a[4], a[5], a[6]}; }
 
 json to_json(const Record& r) {
     json j = {{"id", r.id}, {"t", r.t}, {"x", r.x}, {"y", r.y}, {"z", r.z}, {"rel_x", r.rel_x}, {"s_ball", r.s_ball},
@@ -191,8 +144,9 @@ struct RunOptions {
     double end = 3.0;            // simulated end
     double window = 3.0;         // checks use t <= window only (the same with and without --full)
     double start = 0.0;          // physical time of the model's t = 0 (football_scene's t0)
-    std::vector<Case> cases;     // cases[0] runs in this process, the others are forked at their switch
+    std::vector<Case> cases;     // cases[0] runs in this process, the others restart at their switch
     std::filesystem::path out;
+    std::filesystem::path dumps;  // restart dumps at the speed switches (removed after the run)
     std::string name = "football";
 };
 
@@ -209,108 +163,54 @@ std::map<std::string, double> tip_lags(const HandModel& hm, const NodalState& s,
     return lag;
 }
 
-// Runs cases[0] from t = 0, forking one process per further case at the last sample before that
-// case's speed switch (the child takes the case's schedule: identical up to there). Each process
-// writes <out>/<name>-case-<id>.json; the children then exit. Returns cases[0]'s record.
-Record run(const Variant& v, RunOptions o) {
-    Case current = o.cases.front();
-    std::vector<Case> pending(o.cases.begin() + 1, o.cases.end());
-    std::sort(pending.begin(), pending.end(), [](const Case& a, const Case& b) { return a.t_switch < b.t_switch; });
-    HandModel hm(football_scene(current, v, o.start));
-    auto& probe = static_cast<ContactProbe&>(hm.model().add_force_provider(std::make_unique<ContactProbe>(hm)));
-    ExplicitOptions opt;
-    opt.end_time = o.end - o.start;
-    opt.print_summary = false;
-    opt.progress = false;
-    opt.history_interval = kSample;
-    opt.name = fmt::format("{}-case-{}", o.name, current.id);
-    // No VTU from the solver: forked children would inherit its writer; the snapshots are written
-    // as VTU/PVD afterwards (write_snapshots).
-    const bool football = v.football;
+// What the observer keeps between cycles for one case (a forked child carries it on).
+struct Recorder {
+    const Variant& v;
+    const RunOptions& o;
     Record r;
-    r.id = current.id;
-    r.window = o.window;
-    if (football) r.y0 = hm.centre_of_mass("football", hm.mesh().nodes).y();
-    // Surface nodes of each finger (for the finger-finger clearance).
-    std::map<std::string, std::vector<int>> surf;
-    for (const auto& f : kFingers) surf[f] = contact::ContactSurface::from_part(hm.mesh(), "finger-" + f, hm.scene().hand.rubber).nodes;
-    for (const auto& [a, b] : kFingerPairs) r.min_clearance[a + b] = 1e9;
-    std::vector<double> bins;  // football stress maxima per 0.1 ms
-    double row_s = 0, row_sf = 0, next_row = o.start, next_clearance = o.start, next_log = o.start, energy_scale = 0, max_balance = 0;
+    std::map<std::string, std::vector<int>> surf;  // surface nodes of each finger (finger-finger clearance)
+    std::vector<double> bins;                      // football stress maxima per 0.1 ms (the CFC 60 input)
+    double bin_s = 0, row_s = 0, row_sf = 0, next_bin = 0, next_row = 0, next_clearance = 0, next_log = 0;
+    double energy_scale = 0, max_balance = 0, t_last = -1;
     std::size_t snap = 0;
-    bool is_child = false;
-    std::unique_ptr<ExplicitSolver> solver;
-    auto observe = [&](const ExplicitSolver& s) {
+
+    Recorder(const Variant& v_, const RunOptions& o_, const HandModel& hm, int id) : v(v_), o(o_) {
+        r.id = id;
+        r.window = o.window;
+        if (v.football) r.y0 = hm.centre_of_mass("football", hm.mesh().nodes).y();
+        for (const auto& f : kFingers)
+            surf[f] = contact::ContactSurface::from_part(hm.mesh(), "finger-" + f, hm.scene().hand.rubber).nodes;
+        for (const auto& [a, b] : kFingerPairs) r.min_clearance[a + b] = 1e9;
+        next_bin = next_row = next_clearance = next_log = o.start;
+    }
+
+    double max_penetration() const {
+        double pen = 0;
+        for (const auto& [n, p] : r.pairs) pen = std::max(pen, p.max_penetration_fraction);
+        return pen;
+    }
+
+    // Every cycle (ExplicitOptions::observer_interval = 0).
+    void cycle(const ExplicitSolver& s, const HandModel& hm) {
         const double tau = s.time(), t = tau + o.start;  // model and physical time
         if (g_stop) s.request_stop();
-        while (!pending.empty() && t >= pending.front().t_switch - 2.0 * kSample) {
-            const Case next = pending.front();
-            pending.erase(pending.begin());
-            std::fflush(stdout);
-            const pid_t pid = fork();
-            if (pid < 0) throw SolverError("football_sweep: fork() failed");
-            if (pid == 0) {  // the child continues as case `next`
-                is_child = true;
-                current = next;
-                r.id = next.id;
-                pending.clear();
-                hm.set_plate_schedule("pallet", next.schedule(o.start));
-            }
-        }
-        const auto& h = s.history();
-        auto last = [&](const std::string& part) {
-            auto it = h.max_von_mises.find(part);
-            return it == h.max_von_mises.end() || it->second.empty() ? 0.0 : it->second.back();
-        };
-        const double sb = football ? last("football") : 0.0;
-        bins.push_back(sb);
+        // A restarted child sees the cycles up to its fork again: they are counted already.
+        if (tau <= t_last) return;
+        const double dt = t_last < 0 ? 0.0 : tau - t_last;
+        t_last = tau;
+        contacts(hm, t, dt);
+        const double sb = v.football ? s.max_von_mises("football") : 0.0;
+        bin_s = std::max(bin_s, sb);
         row_s = std::max(row_s, sb);
-        for (const auto& f : kFingers) row_sf = std::max(row_sf, last("finger-" + f));
+        for (const auto& f : kFingers) row_sf = std::max(row_sf, s.max_von_mises("finger-" + f));
+        if (t + 1e-12 < next_bin) return;
+        // --- every 0.1 ms ---
+        next_bin += kSample;
+        bins.push_back(bin_s);
+        bin_s = 0;
         if (r.lag.empty() && tau >= kLagTime) r.lag = tip_lags(hm, s.state(), tau);
-        if (t >= next_clearance) {  // every 5 ms: closest surface nodes of neighbouring fingers
-            next_clearance += 5e-3;
-            const auto& x = s.state().x;
-            auto box = [&](const std::vector<int>& nodes) {
-                Eigen::AlignedBox<double, 3> b;
-                for (int i : nodes) b.extend(x[i]);
-                return b;
-            };
-            for (const auto& [a, b] : kFingerPairs) {
-                double& best = r.min_clearance[a + b];
-                const auto ba = box(surf[a]), bb = box(surf[b]);
-                Vec3 gap = (ba.min() - bb.max()).cwiseMax(bb.min() - ba.max()).cwiseMax(Vec3::Zero());
-                if (gap.norm() >= best) continue;  // the boxes are farther apart than the closest seen
-                double d2 = 1e18;
-                for (int i : surf[a])
-                    for (int j : surf[b]) d2 = std::min(d2, (x[i] - x[j]).squaredNorm());
-                best = std::min(best, std::sqrt(d2));
-            }
-        }
-        if (t <= o.window + 1e-12) {
-            double pen = 0;
-            for (const auto& [n, p] : probe.per_pair) pen = std::max(pen, p.max_penetration_fraction);
-            r.pen_window = pen;
-            // Energy balance error relative to the largest energy in the system so far (kinetic +
-            // internal + hourglass + damping + contact + viscous), and hourglass over internal.
-            const double scale = h.kinetic.back() + h.internal.back() + h.hourglass.back() + h.damping.back() +
-                                 std::abs(h.contact.back()) + h.viscous.back();
-            energy_scale = std::max(energy_scale, scale);
-            max_balance = std::max(max_balance, std::abs(h.balance.back()));
-            r.balance_window = energy_scale > 0 ? max_balance / energy_scale : 0.0;
-            r.hourglass_window = h.internal.back() > 0 ? h.hourglass.back() / h.internal.back() : 0.0;
-        }
-        if (t >= next_log) {  // progress, every 0.1 s simulated
-            next_log += 0.1;
-            double pen = 0;
-            for (const auto& [n, p] : probe.per_pair) pen = std::max(pen, p.max_penetration_fraction);
-            fmt::print("  {} case {} t {:.2f}: football y {:+.2f} mm, x - pallet {:.2f} mm, stress {:.4f} MPa, "
-                       "penetration {:.3f}, first finger contact {:.3f} s\n", o.name, current.id, t,
-                       football ? 1e3 * (hm.centre_of_mass("football", s.state().x).y() - r.y0) : 0.0,
-                       football ? 1e3 * (hm.centre_of_mass("football", s.state().x).x() - hm.plate_centre("pallet", tau).x()) : 0.0,
-                       1e-6 * sb, pen, probe.per_pair.count("fingers on football") && probe.per_pair["fingers on football"].first >= 0
-                                           ? probe.per_pair["fingers on football"].first + o.start : -1.0);
-            std::fflush(stdout);
-        }
+        if (t >= next_clearance) clearances(s, t);
+        if (t >= next_log) log(s, hm, t, sb);
         if (snap < kSnapshots.size() && t >= kSnapshots[snap]) {
             ++snap;
             r.snap_t.push_back(t);
@@ -319,9 +219,10 @@ Record run(const Variant& v, RunOptions o) {
             r.snap_x.push_back(std::move(flat));
         }
         if (t < next_row - 1e-12) return;
+        // --- every 1 ms ---
         next_row += kRow;
         r.t.push_back(t);
-        if (football) {
+        if (v.football) {
             const Vec3 c = hm.centre_of_mass("football", s.state().x);
             r.x.push_back(c.x()), r.y.push_back(c.y()), r.z.push_back(c.z());
             r.rel_x.push_back(c.x() - hm.plate_centre("pallet", tau).x());
@@ -331,43 +232,185 @@ Record run(const Variant& v, RunOptions o) {
         for (const auto& f : kFingers) {
             const int node = hm.tip_node(f);
             r.tip_y[f].push_back(s.state().x[node].y() - s.state().X[node].y());
-            r.impulse[f].push_back(probe.per_finger[f].impulse);
+            r.impulse[f].push_back(r.fingers[f].impulse);
         }
-    };
-    solver = std::make_unique<ExplicitSolver>(hm.model(), opt);
-    solver->observer = observe;
-    const RunSummary sum = solver->run();
-    // Stress: CFC 60 over the whole record (plots) and over the judged window alone (checks).
-    const damping::SampledSignal all = cfc60(bins);
-    for (double t : r.t) {
-        const std::size_t i = std::min(all.size() - 1, static_cast<std::size_t>(std::max(0.0, (t - o.start) / kSample - 0.5)));
-        r.s_ball_cfc.push_back(all.x[i]);
+        if (t <= o.window + 1e-12) {
+            r.pen_window = max_penetration();
+            // Energy balance error relative to the largest energy in the system so far (kinetic +
+            // internal + hourglass + damping + contact + viscous), and hourglass over internal.
+            const auto& h = s.history();
+            if (h.kinetic.empty()) return;
+            const double scale = h.kinetic.back() + h.internal.back() + h.hourglass.back() + h.damping.back() +
+                                 std::abs(h.contact.back()) + h.viscous.back();
+            energy_scale = std::max(energy_scale, scale);
+            max_balance = std::max(max_balance, std::abs(h.balance.back()));
+            r.balance_window = energy_scale > 0 ? max_balance / energy_scale : 0.0;
+            r.hourglass_window = h.internal.back() > 0 ? h.hourglass.back() / h.internal.back() : 0.0;
+        }
     }
-    const std::size_t nw = std::min(bins.size(), static_cast<std::size_t>((o.window - o.start) / kSample));
-    const damping::SampledSignal win = cfc60(std::vector<double>(bins.begin(), bins.begin() + nw));
-    r.s_cfc_max = *std::max_element(win.x.begin(), win.x.end());
-    r.s_raw_max = *std::max_element(bins.begin(), bins.begin() + nw);
-    r.summary = sum.to_json();
-    r.summary["name"] = fmt::format("{}-case-{}", o.name, current.id);
-    r.summary["contact_s"] = hm.contact_seconds();
-    r.summary["contact_share_of_step_time"] = sum.wall_s > 0 ? hm.contact_seconds() / sum.wall_s : 0.0;
-    double worst = 0;
-    for (const auto& [n, p] : probe.per_pair) worst = std::max(worst, p.max_penetration_fraction);
-    r.summary["max_penetration_fraction_of_element"] = worst;
-    r.summary["hourglass_over_internal"] = sum.energy.internal > 0 ? sum.energy.hourglass / sum.energy.internal : 0.0;
-    r.pairs = probe.per_pair, r.fingers = probe.per_finger;
-    io::AtomicFile f(o.out / fmt::format("{}-case-{}.json", o.name, current.id));
-    f.stream() << to_json(r).dump();
-    f.commit();
-    fmt::print("[ {} case {} ] {} steps, dt {:.3g} us, {:.0f} s wall, {:.3g} M element-cycles/s, contact {:.0f} %, "
-               "energy error {:.2g}, max penetration {:.3f} of the element\n",
-               o.name, current.id, sum.steps, 1e6 * sum.min_dt, sum.wall_s, 1e-6 * sum.element_cycles_per_s,
-               100 * r.summary["contact_share_of_step_time"].get<double>(), sum.energy.relative_error(), worst);
-    if (is_child) {
+
+    // Contact this cycle: impulse, contact time and the first/last contact per pair and per finger;
+    // the deepest penetration (lib/contact: a fraction of the slave node's element size) and when
+    // it was reached.
+    void contacts(const HandModel& hm, double t, double dt) {
+        for (const auto& p : hm.pairs()) {
+            auto& q = r.pairs[p.name];
+            q.impulse += p.contact->force_on_master().norm() * dt;
+            if (!p.contact->contacts().empty()) {
+                q.time += dt;
+                if (q.first < 0) q.first = t;
+                q.last = t;
+            }
+            if (p.contact->max_penetration_fraction() > q.max_penetration_fraction)
+                q.max_penetration_fraction = p.contact->max_penetration_fraction(), q.at = t;
+            q.max_penetration = p.contact->max_penetration();
+        }
+        if (!v.football) return;
+        // Force on each finger from the football (fingers on football: pass 0 = finger nodes on
+        // football faces, force on the finger; pass 1 = football nodes on finger faces, reaction).
+        const auto& fc = hm.contact("fingers on football");
+        std::map<std::string, Vec3> on;
+        for (const auto& c : fc.contacts()) {
+            const Vec3 f = c.normal_force * c.normal + c.tangential_force;
+            // (try_emplace with zero: a default-constructed Eigen vector is uninitialised)
+            if (c.pass == 0) on.try_emplace(hm.finger_of_node(c.node), Vec3::Zero()).first->second += f;
+            else on.try_emplace(hm.finger_of_block(fc.slave_surface().segments[c.segment].block), Vec3::Zero()).first->second -= f;
+        }
+        for (const auto& [finger, f] : on) {
+            auto& q = r.fingers[finger];
+            q.impulse += f.norm() * dt;
+            q.time += dt;
+            if (q.first < 0) q.first = t;
+            q.last = t;
+        }
+    }
+
+    // Every 5 ms: the closest surface nodes of neighbouring fingers.
+    void clearances(const ExplicitSolver& s, double) {
+        next_clearance += 5e-3;
+        const auto& x = s.state().x;
+        auto box = [&](const std::vector<int>& nodes) {
+            Eigen::AlignedBox<double, 3> b;
+            for (int i : nodes) b.extend(x[i]);
+            return b;
+        };
+        for (const auto& [a, b] : kFingerPairs) {
+            double& best = r.min_clearance[a + b];
+            const auto ba = box(surf[a]), bb = box(surf[b]);
+            Vec3 gap = (ba.min() - bb.max()).cwiseMax(bb.min() - ba.max()).cwiseMax(Vec3::Zero());
+            if (gap.norm() >= best) continue;  // the boxes are farther apart than the closest seen
+            double d2 = 1e18;
+            for (int i : surf[a])
+                for (int j : surf[b]) d2 = std::min(d2, (x[i] - x[j]).squaredNorm());
+            best = std::min(best, std::sqrt(d2));
+        }
+    }
+
+    // Progress, every 0.1 s simulated.
+    void log(const ExplicitSolver& s, const HandModel& hm, double t, double sb) {
+        next_log += 0.1;
+        const double tau = s.time();
+        const auto it = r.pairs.find("fingers on football");
+        fmt::print("  {} case {} t {:.2f}: football y {:+.2f} mm, x - pallet {:.2f} mm, stress {:.4f} MPa, "
+                   "penetration {:.3f}, first finger contact {:.3f} s, dt {:.3g} us\n", o.name, r.id, t,
+                   v.football ? 1e3 * (hm.centre_of_mass("football", s.state().x).y() - r.y0) : 0.0,
+                   v.football ? 1e3 * (hm.centre_of_mass("football", s.state().x).x() - hm.plate_centre("pallet", tau).x()) : 0.0,
+                   1e-6 * sb, max_penetration(), it != r.pairs.end() && it->second.first >= 0 ? it->second.first : -1.0,
+                   1e6 * 0.9 * s.critical_dt());
         std::fflush(stdout);
-        std::_Exit(0);
     }
-    return r;
+
+    // After the run: the CFC 60 stress, the summary, the record file.
+    void finish(const RunSummary& sum, const HandModel& hm, const nlohmann::json& prefix) {
+        // Stress: CFC 60 over the whole record (plots) and over the judged window alone (checks).
+        const damping::SampledSignal all = cfc60(bins);
+        for (double t : r.t) {
+            const std::size_t i = std::min(all.size() - 1, static_cast<std::size_t>(std::max(0.0, (t - o.start) / kSample - 0.5)));
+            r.s_ball_cfc.push_back(all.x[i]);
+        }
+        const std::size_t nw = std::min(bins.size(), static_cast<std::size_t>((o.window - o.start) / kSample));
+        const damping::SampledSignal win = cfc60(std::vector<double>(bins.begin(), bins.begin() + nw));
+        r.s_cfc_max = *std::max_element(win.x.begin(), win.x.end());
+        r.s_raw_max = *std::max_element(bins.begin(), bins.begin() + nw);
+        r.summary = sum.to_json();
+        r.summary["name"] = fmt::format("{}-case-{}", o.name, r.id);
+        const double contact_s = sum.timing.contact_search + sum.timing.contact_forces;
+        r.summary["contact_share_of_step_time"] = sum.wall_s > 0 ? contact_s / sum.wall_s : 0.0;
+        r.summary["max_penetration_fraction_of_element"] = max_penetration();
+        r.summary["hourglass_over_internal"] = sum.energy.hourglass_fraction();
+        if (!prefix.is_null()) r.summary["restarted_from"] = prefix;
+        io::AtomicFile f(o.out / fmt::format("{}-case-{}.json", o.name, r.id));
+        f.stream() << to_json(r).dump();
+        f.commit();
+        fmt::print("[ {} case {} ] {} steps{}, dt {:.3g} us, {:.0f} s wall, {:.3g} M element-cycles/s, contact {:.0f} %, "
+                   "energy error {:.2g}, max penetration {:.3f} of the element\n",
+                   o.name, r.id, sum.steps, prefix.is_null() ? "" : " (after its restart)", 1e6 * sum.min_dt, sum.wall_s,
+                   1e-6 * sum.element_cycles_per_s, 100 * r.summary["contact_share_of_step_time"].get<double>(),
+                   sum.energy.relative_error(), max_penetration());
+        (void)hm;
+    }
+};
+
+ExplicitOptions solver_options(const RunOptions& o, int id) {
+    ExplicitOptions opt;
+    opt.end_time = o.end - o.start;
+    opt.print_summary = false;
+    opt.progress = false;
+    opt.history_interval = kRow;   // energies for the balance; the observer watches every cycle
+    opt.observer_interval = 0.0;
+    opt.name = fmt::format("{}-case-{}", o.name, id);
+    return opt;
+}
+
+// Runs cases[0] from t = 0. The other cases are the same run until their speed switch: the run
+// writes a restart dump 0.1 ms before each switch (core's restart, ExplicitOptions::restart_times),
+// and when one is written a child process is forked that builds the case's model (its pallet
+// schedule) and restarts from the dump (a "full deck restart" that changes a motion), keeping the
+// observer's record so far. Each process writes <out>/<name>-case-<id>.json; the children then exit.
+// Returns cases[0]'s record.
+Record run(const Variant& v, const RunOptions& o) {
+    std::vector<Case> pending(o.cases.begin() + 1, o.cases.end());
+    std::sort(pending.begin(), pending.end(), [](const Case& a, const Case& b) { return a.t_switch < b.t_switch; });
+    HandModel hm(football_scene(o.cases.front(), v, o.start));
+    ExplicitOptions opt = solver_options(o, o.cases.front().id);
+    if (!pending.empty()) {
+        std::filesystem::create_directories(o.dumps);
+        opt.restart_dir = o.dumps;
+        for (const auto& c : pending) {
+            if (c.t_switch - kSample <= o.start) throw InputError(fmt::format(
+                "football_sweep: case {} switches at {} s, before the start {} s", c.id, c.t_switch, o.start));
+            opt.restart_times.push_back(c.t_switch - kSample - o.start);
+        }
+    }
+    Recorder rec(v, o, hm, o.cases.front().id);
+    std::size_t forked = 0;
+    ExplicitSolver solver(hm.model(), opt);
+    solver.observer = [&](const ExplicitSolver& s) {
+        while (forked < s.restart_files().size() && forked < pending.size()) {
+            const Case next = pending[forked];
+            const auto file = s.restart_files()[forked++];
+            std::fflush(stdout);
+            const pid_t pid = fork();
+            if (pid < 0) throw SolverError("football_sweep: fork() failed");
+            if (pid > 0) continue;
+            // The child: case `next` from the dump, with the record so far.
+            HandModel child_model(football_scene(next, v, o.start));
+            ExplicitOptions copt = solver_options(o, next.id);
+            copt.restart_from = file;
+            ExplicitSolver child(child_model.model(), copt);
+            rec.r.id = next.id;
+            child.observer = [&](const ExplicitSolver& cs) { rec.cycle(cs, child_model); };
+            const RunSummary sum = child.run();
+            rec.finish(sum, child_model, {{"file", file.filename().string()}, {"time", s.time() + o.start},
+                                          {"steps_before", s.step()}});
+            std::fflush(stdout);
+            std::_Exit(0);
+        }
+        rec.cycle(s, hm);
+    };
+    const RunSummary sum = solver.run();
+    rec.finish(sum, hm, nullptr);
+    return rec.r;
 }
 
 // Waits for every child process; throws when one failed.
@@ -485,8 +528,10 @@ int main(int argc, char** argv) {
                 std::fflush(stdout);
                 std::_Exit(0);
             }
+            o.dumps = std::filesystem::temp_directory_path() / fmt::format("football_sweep-{}", getpid());
             run(Variant{}, o);
             wait_children();
+            std::filesystem::remove_all(o.dumps);
         }
         std::map<int, Record> res;
         for (const auto& c : o.cases) {

@@ -7,8 +7,9 @@
 //   single part: the two columns and the beam as one folded plate strip (corner lines shared),
 //                no brackets, no screws (the thesis's "perfectly combined single component");
 //   assembled:   three separate plates (corner lines NOT shared), two L brackets inside the top
-//                corners, 16 screws = 16 pairs (plate node, bracket node) whose translations are
-//                coupled (ANSYS CP sets), 4 per bracket leg in a 2 x 2 pattern.
+//                corners, 16 screws = 16 pairs (plate node, bracket node), 4 per bracket leg in a 2 x 2
+//                pattern, each coupled by the study (ANSYS CP sets; which DOFs is the study's choice),
+//                with Geometry::screw_patch more facing pairs around each.
 //
 // Axes: the frame stands in the x-z plane (x along the span, z up), the plates' width runs along y.
 // Mid-surfaces: left column x = 0, right column x = span, beam z = height; columns clamped at z = 0.
@@ -35,6 +36,10 @@ struct Geometry {
     int across = 16;               // elements across the width (Table 2-4 topology: 16)
     int bracket_leg = 21;          // elements along each bracket leg (Table 2-4 topology: 21)
     std::array<int, 2> screw_rows = {7, 14};  // screws: leg node rows, counted from the corner
+    // Screw model: 0 couples the one facing node pair on the screw's axis (a pin); 1 also the 8
+    // facing pairs around it, a (2h)^2 = 19 mm square patch standing for the area a screw head and
+    // washer clamp (README "Missing screws": the search over screw models).
+    int screw_patch = 0;
     int refine = 1;                // subdivides every element refine x refine (convergence runs)
 
     double element_size() const { return width / across; }
@@ -42,10 +47,12 @@ struct Geometry {
     int beam_elements() const { return std::max(1, static_cast<int>(std::lround(span / element_size()))); }
 };
 
-/// One screw: the plate node and the bracket node whose translations are coupled.
+/// One screw: the plate node and the bracket node on its axis, and every facing (plate, bracket) node
+/// pair it couples (the axis pair first; more with Geometry::screw_patch).
 struct Screw {
     std::string name;  // e.g. "L-col-1": left corner, column leg, screw 1 (see README.md)
     int plate_node = -1, bracket_node = -1;
+    std::vector<std::pair<int, int>> pairs;
 };
 
 struct FrameMesh {
@@ -91,6 +98,9 @@ inline void check(const Geometry& g) {
     positive(g.bracket_thickness, "bracket thickness");
     if (g.across < 2 || g.refine < 1 || g.bracket_leg < 2)
         throw fem::InputError("portal frame: needs at least 2 elements across and along a bracket leg");
+    if (g.screw_patch < 0 || g.screw_patch * 4 >= g.across || g.screw_rows[0] <= g.screw_patch ||
+        g.screw_rows[1] + g.screw_patch >= g.bracket_leg)
+        throw fem::InputError("portal frame: the screw patch reaches past the bracket leg or the plate's edge");
     if (g.bracket_leg >= g.column_elements() || 2 * g.bracket_leg >= g.beam_elements())
         throw fem::InputError("portal frame: bracket legs longer than the column or half the beam");
 }
@@ -171,19 +181,26 @@ inline FrameMesh assembled(const Geometry& g) {
     // Screws: rows screw_rows (from the corner) x columns at 1/4 and 3/4 of the width.
     const int k1 = m / 4, k2 = 3 * m / 4;
     int count = 0;
-    auto screw = [&](const std::string& where, int plate, int bracket) {
-        f.screws.push_back({where + "-" + std::to_string(++count), plate, bracket});
+    // The facing (plate, bracket) nodes at leg row j (from the corner) and width index k.
+    auto facing = [&](const std::string& w, int j, int k) -> std::pair<int, int> {
+        if (w == "L-col") return {col_l[nc - j][k], brk_l[leg - j][k]};
+        if (w == "L-beam") return {beam[j][k], brk_l[leg + j][k]};
+        if (w == "R-beam") return {beam[nb - j][k], brk_r[leg - j][k]};
+        return {col_r[j][k], brk_r[leg + j][k]};  // R-col
     };
+    const int p = g.screw_patch * r;
     for (const char* where : {"L-col", "L-beam", "R-beam", "R-col"}) {
         count = 0;
         const std::string w = where;
         for (int row : g.screw_rows)
             for (int k : {k1, k2}) {
                 const int j = row * r;
-                if (w == "L-col") screw(w, col_l[nc - j][k], brk_l[leg - j][k]);
-                if (w == "L-beam") screw(w, beam[j][k], brk_l[leg + j][k]);
-                if (w == "R-beam") screw(w, beam[nb - j][k], brk_r[leg - j][k]);
-                if (w == "R-col") screw(w, col_r[j][k], brk_r[leg + j][k]);
+                Screw s{w + "-" + std::to_string(++count), facing(w, j, k).first, facing(w, j, k).second, {}};
+                s.pairs.push_back(facing(w, j, k));
+                for (int dj = -p; dj <= p; ++dj)
+                    for (int dk = -p; dk <= p; ++dk)
+                        if (dj != 0 || dk != 0) s.pairs.push_back(facing(w, j + dj, k + dk));
+                f.screws.push_back(std::move(s));
             }
     }
     return f;

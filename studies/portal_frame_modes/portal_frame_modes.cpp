@@ -22,8 +22,9 @@
 //       figures/fig-2-10.svg, fig-2-11.png, fig-2-12.svg, fig-2-13.png, fig-c-2..7.png
 //
 // Model: MITC4 shells (lib/element/shell_mitc4.hpp, 6 DOF per node, consistent mass) on the plates'
-// mid-surfaces; screws are coupled translations of a plate node and the bracket node facing it (ANSYS
-// CP sets, as the thesis); modes by shift-invert Lanczos (lib/modal), as ANSYS Block Lanczos.
+// mid-surfaces; a screw couples all six DOFs of a plate node and the bracket node facing it (ANSYS CP
+// sets, "coupling the DOF at the connection interface"; the screw search of README.md chose all six
+// over the translations alone); modes by shift-invert Lanczos (lib/modal), as ANSYS Block Lanczos.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -60,7 +61,7 @@ const ElasticMaterial kSteel = ElasticMaterial::make("steel (Table 2-4)", 210 * 
 // The reconstructed frame (README.md, "Reconstruction"). Element size h = W/16 along and across.
 constexpr int kColumnElements = 92;               // calibrated: f2/f1 of the assembled model
 constexpr int kBeamElements = 337 - 2 * kColumnElements;  // Table 2-4: 337 elements along the strip
-constexpr double kCalibratedThickness = 2.98789 * mm;     // calibrated: f1 of the assembled model = 2.1 Hz
+constexpr double kCalibratedThickness = 2.97498 * mm;     // calibrated: f1 of the assembled model = 2.1 Hz
 
 portal::Geometry reconstructed_geometry() {
     portal::Geometry g;
@@ -73,13 +74,18 @@ portal::Geometry reconstructed_geometry() {
     return g;
 }
 
-// The missing screws of Fig 2-12 (a picture; our choice, README.md): the left bracket's screw nearest
-// the free end of its column leg (y = W/4) for "missing 1 screw", plus the matching screw of its beam
-// leg for "missing 2 screws". Each leg keeps at least three screws: two screws left in one leg lie on
-// a line, and with coupled translations that line is a hinge which drops mode 1 by 21 % (our first
-// choice, the whole outer row of one leg) against the thesis's "lower modes remain the same".
-const std::vector<std::string> kMissingOne = {"L-col-3"};
-const std::vector<std::string> kMissingTwo = {"L-col-3", "L-beam-3"};
+// The screw model: a CP set on all six DOFs of the facing node pair. --screw-search (README.md "Missing
+// screws") tried it against coupled translations alone (the model chosen before the first run) and a
+// head-sized patch of 3 x 3 coupled pairs: only the six-DOF pin gives Table 2-6's large drops with
+// the low modes unchanged, and it also brings Table 2-5's modes 27-30 to the thesis's.
+constexpr DofMask kScrewDofs = kAllDofs;
+
+// The missing screws of Fig 2-12 (a picture): the choice --screw-search finds best among every choice
+// of one and of two screws (up to the frame's mirror symmetries): the left bracket's column-leg screw
+// nearest the corner at y = W/4 for "missing 1 screw", and with it the far screw on the same line of
+// that leg for "missing 2 screws" (README.md).
+const std::vector<std::string> kMissingOne = {"L-col-1"};
+const std::vector<std::string> kMissingTwo = {"L-col-1", "L-col-3"};
 
 // Thesis values used for tables and the derived trend checks (also in the reference file).
 const std::vector<double> kThesisAssembled = {2.1,   5.5,   13.4,  17.2,  22.3,  32.8,  46.6,  49.9,  50.5,  59.2,
@@ -124,7 +130,7 @@ ElementKernel shell_kernel(double t) {
 bool is_bracket(const ElementBlock& b) { return b.part.rfind("bracket", 0) == 0; }
 
 Run solve(std::string name, const portal::Geometry& g, portal::FrameMesh frame, int modes,
-          const std::vector<std::string>& missing = {}, DofMask screw_dofs = kTranslations) {
+          const std::vector<std::string>& missing = {}, DofMask screw_dofs = kScrewDofs) {
     const auto t0 = std::chrono::steady_clock::now();
     Run r{std::move(name), std::move(frame), {}, {}, 0.0};
     Model model(r.frame.mesh);
@@ -136,7 +142,7 @@ Run solve(std::string name, const portal::Geometry& g, portal::FrameMesh frame, 
             throw InputError("portal frame: no screw named '" + m + "'");
     for (const auto& s : r.frame.screws)
         if (std::find(missing.begin(), missing.end(), s.name) == missing.end())
-            model.couple({s.plate_node, s.bracket_node}, screw_dofs);  // one screw = one CP set
+            for (const auto& [plate, bracket] : s.pairs) model.couple({plate, bracket}, screw_dofs);  // one CP set per pair
     r.system = model.assemble();
     r.modes = modal::solve_modes(r.system, {.modes = modes});
     r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -282,25 +288,145 @@ int calibrate() {
 }
 
 // --sensitivity: how the reconstructed model's frequencies move with the mesh (every element split
-// in four) and with screws that also couple rotations. Printed only; README.md quotes it.
+// in four) and with screws that couple the translations alone. Printed only; README.md quotes it.
 int sensitivity() {
     const portal::Geometry g = reconstructed_geometry();
     portal::Geometry fine = g;
     fine.refine = 2;
     const Run base = solve("assembled", g, portal::assembled(g), kModes);
     const Run refined = solve("assembled, refined", fine, portal::assembled(fine), kModes);
-    const Run rigid = solve("assembled, screws couple all 6 DOF", g, portal::assembled(g), kModes, {}, kAllDofs);
+    const Run pins = solve("assembled, screws couple the translations", g, portal::assembled(g), kModes, {}, kTranslations);
     const Run single = solve("single part", g, portal::single_part(g), kModes);
     const Run single_fine = solve("single part, refined", fine, portal::single_part(fine), kModes);
-    fmt::print("mode  assembled  refined (%)  6-DOF screws (%)  single  refined (%)\n");
+    fmt::print("mode  assembled  refined (%)  translation screws (%)  single  refined (%)\n");
     for (int k = 0; k < kModes; ++k) {
         const double a = base.modes.frequencies_hz(k), s = single.modes.frequencies_hz(k);
         fmt::print("{:4d} {:10.3f} {:+10.2f} {:+12.2f} {:12.3f} {:+10.2f}\n", k + 1, a,
-                   100 * (refined.modes.frequencies_hz(k) / a - 1), 100 * (rigid.modes.frequencies_hz(k) / a - 1), s,
+                   100 * (refined.modes.frequencies_hz(k) / a - 1), 100 * (pins.modes.frequencies_hz(k) / a - 1), s,
                    100 * (single_fine.modes.frequencies_hz(k) / s - 1));
     }
-    fmt::print("mean |deviation| from thesis, modes 3-30: assembled {:.3f}, 6-DOF screws {:.3f}\n",
-               mean_abs_relative(base.frequencies(), kThesisAssembled, 2), mean_abs_relative(rigid.frequencies(), kThesisAssembled, 2));
+    fmt::print("mean |deviation| from thesis, modes 3-30: assembled {:.3f}, translation screws {:.3f}\n",
+               mean_abs_relative(base.frequencies(), kThesisAssembled, 2), mean_abs_relative(pins.frequencies(), kThesisAssembled, 2));
+    return 0;
+}
+
+// --screw-search: which missing screws (Fig 2-12 is a picture) and which screw model give Table 2-6?
+// Every choice of one and of two missing screws among the 16, for three screw models, on 30 modes.
+// The frame is symmetric (left/right: x -> L - x; front/back: y -> W - y), so a set of missing screws
+// and its mirror images have the same frequencies: one representative per class is solved.
+std::string mirrored(const std::string& screw, bool left_right, bool front_back) {
+    std::string s = screw;  // "<L|R>-<col|beam>-<1..4>"; 1, 2 at y = W/4, 3W/4 of the near row, 3, 4 of the far row
+    if (left_right) s[0] = s[0] == 'L' ? 'R' : 'L';
+    if (front_back) {
+        const int n = s.back() - '0';
+        s.back() = static_cast<char>('0' + (n % 2 == 1 ? n + 1 : n - 1));
+    }
+    return s;
+}
+
+/// The class of a set of missing screws under the frame's symmetry: its smallest mirror image, and
+/// how many distinct sets the class holds.
+std::pair<std::vector<std::string>, int> symmetry_class(const std::vector<std::string>& set) {
+    std::vector<std::vector<std::string>> images;
+    for (bool lr : {false, true})
+        for (bool fb : {false, true}) {
+            std::vector<std::string> image;
+            for (const auto& s : set) image.push_back(mirrored(s, lr, fb));
+            std::sort(image.begin(), image.end());
+            images.push_back(image);
+        }
+    std::sort(images.begin(), images.end());
+    images.erase(std::unique(images.begin(), images.end()), images.end());
+    return {images.front(), static_cast<int>(images.size())};
+}
+
+int screw_search(const std::filesystem::path& out_dir) {
+    std::filesystem::create_directories(out_dir);
+    struct ScrewModel {
+        std::string name;
+        int patch;
+        DofMask dofs;
+    };
+    const std::vector<ScrewModel> models = {{"pin (translations of one node pair; the first model)", 0, kTranslations},
+                                            {"pin coupling all 6 DOF of one node pair (the study's)", 0, kAllDofs},
+                                            {"head-sized patch (3 x 3 node pairs, 19 mm), translations", 1, kTranslations}};
+    const std::vector<double> thesis1 = {-0.15, -0.30, -0.08, -0.06, -0.21, -0.25, -0.31, -0.38, -0.03, -0.19,
+                                        -0.03, -3.11, -0.69, -3.70, 0.00,  -1.32, -0.28, -0.01, -0.11, -7.93,
+                                        -10.62, -0.09, -0.70, -0.67, -0.34, -0.29, -9.38, -2.66, -0.58, -4.95};
+    const std::vector<double> thesis2 = {-0.31, -0.61, -0.25, -0.51, -0.71, -0.55, -1.12,  -1.53, -0.05, -1.14,
+                                        -0.27, -15.34, -1.01, -4.44, -0.01, -3.70, -0.34, -0.22, -0.55, -12.61,
+                                        -11.48, -4.18, -0.89, -3.38, -0.51, -4.75, -13.15, -10.56, -3.80, -5.29};
+    io::AtomicFile csv(out_dir / "screw-search.csv");
+    auto& f = csv.stream();
+    f << "model,missing,class_size,max_abs_change_modes_1_11,rms_vs_thesis,mode_12";
+    for (int k = 1; k <= kModes; ++k) f << ",change_" << k;
+    f << "\n";
+    for (const ScrewModel& sm : models) {
+        portal::Geometry g = reconstructed_geometry();
+        g.screw_patch = sm.patch;
+        const portal::FrameMesh frame = portal::assembled(g);
+        const Run base = solve("assembled", g, frame, kModes, {}, sm.dofs);
+        const auto fa = base.frequencies();
+        fmt::print("\n== screw model: {}; assembled modes 12, 20, 27: {:.2f}, {:.2f}, {:.2f} Hz (thesis 81.1, 141.6, 217.2); "
+                   "mean |deviation| from Table 2-5 over modes 3-30 {:.2f} %\n",
+                   sm.name, fa[11], fa[19], fa[26], 100 * mean_abs_relative(fa, kThesisAssembled, 2));
+        std::vector<std::string> names;
+        for (const auto& s : frame.screws) names.push_back(s.name);
+        std::map<std::vector<std::string>, int> classes;
+        for (std::size_t i = 0; i < names.size(); ++i) {
+            classes.insert(symmetry_class({names[i]}));
+            for (std::size_t j = i + 1; j < names.size(); ++j) classes.insert(symmetry_class({names[i], names[j]}));
+        }
+        struct Result {
+            std::vector<std::string> missing;
+            int size;
+            double low, rms;
+            std::vector<double> d;
+        };
+        std::vector<Result> results;
+        for (const auto& [missing, size] : classes) {
+            const Run r = solve("missing", g, frame, kModes, missing, sm.dofs);
+            const auto d = percent_change(r.frequencies(), fa);
+            const auto& thesis = missing.size() == 1 ? thesis1 : thesis2;
+            double low = 0, rms = 0;
+            for (int k = 0; k < kModes; ++k) {
+                if (k < 11) low = std::max(low, std::abs(d[k]));
+                rms += (d[k] - thesis[k]) * (d[k] - thesis[k]) / kModes;
+            }
+            results.push_back({missing, size, low, std::sqrt(rms), d});
+            std::string set;
+            for (const auto& m : missing) set += (set.empty() ? "" : " ") + m;
+            f << '"' << sm.name << "\"," << set << ',' << size << ',' << low << ',' << std::sqrt(rms) << ',' << d[11];
+            for (double x : d) f << ',' << x;
+            f << "\n";
+        }
+        for (std::size_t count : {1u, 2u}) {
+            std::vector<const Result*> sel;
+            for (const auto& r : results)
+                if (r.missing.size() == count) sel.push_back(&r);
+            const double target12 = count == 1 ? -3.11 : -15.34;
+            std::sort(sel.begin(), sel.end(), [&](const Result* a, const Result* b) {
+                return std::abs(a->d[11] - target12) < std::abs(b->d[11] - target12);
+            });
+            fmt::print("missing {} ({} classes), by mode 12's change against the thesis's {:+.2f} %:\n", count, sel.size(), target12);
+            fmt::print("  {:<24} {:>5} {:>9} {:>9} {:>9} {:>9} {:>9} {:>10} {:>8}\n", "missing", "class", "mode 12", "mode 20", "mode 21",
+                       "mode 27", "mode 30", "max 1-11", "rms");
+            for (std::size_t i = 0; i < sel.size() && i < 8; ++i) {
+                std::string set;
+                for (const auto& m : sel[i]->missing) set += (set.empty() ? "" : " ") + m;
+                fmt::print("  {:<24} {:>5} {:>+9.2f} {:>+9.2f} {:>+9.2f} {:>+9.2f} {:>+9.2f} {:>10.2f} {:>8.2f}\n", set, sel[i]->size,
+                           sel[i]->d[11], sel[i]->d[19], sel[i]->d[20], sel[i]->d[26], sel[i]->d[29], sel[i]->low, sel[i]->rms);
+            }
+            const auto best_rms = *std::min_element(sel.begin(), sel.end(), [](const Result* a, const Result* b) { return a->rms < b->rms; });
+            std::string set;
+            for (const auto& m : best_rms->missing) set += (set.empty() ? "" : " ") + m;
+            fmt::print("  smallest rms against the thesis's 30 changes: {} ({:.2f} points; mode 12 {:+.2f} %, max 1-11 {:.2f} %)\n", set,
+                       best_rms->rms, best_rms->d[11], best_rms->low);
+        }
+        std::fflush(stdout);
+    }
+    csv.commit();
+    fmt::print("\nall changes: {}\n", (out_dir / "screw-search.csv").string());
     return 0;
 }
 
@@ -309,6 +435,10 @@ int sensitivity() {
 int main(int argc, char** argv) {
     if (argc >= 2 && std::string(argv[1]) == "--calibrate") return run_program("portal_frame_modes --calibrate", [] { return calibrate(); });
     if (argc >= 2 && std::string(argv[1]) == "--sensitivity") return run_program("portal_frame_modes --sensitivity", [] { return sensitivity(); });
+    if (argc >= 2 && std::string(argv[1]) == "--screw-search")
+        return run_program("portal_frame_modes --screw-search", [&] {
+            return screw_search(argc >= 3 ? argv[2] : "build/results/portal_frame_modes");
+        });
     return check::run_study("portal_frame_modes", argc, argv, [](check::Study& study) {
         const auto& out = study.results_dir();
         const portal::Geometry g = reconstructed_geometry();
@@ -341,7 +471,7 @@ int main(int argc, char** argv) {
                  "|---|---|---|---|---|---|\n";
             t << fmt::format("| single part | no | MITC4 | {} | {} (8-node layout: {}) | 5392 / 16883 |\n",
                              single_mesh.mesh.element_count(), single_mesh.mesh.node_count(), quad8_nodes(single_mesh, true));
-            t << fmt::format("| assembled | 16 screws, coupled translations | MITC4 | {} | {} (8-node layout: {}) | 6736 / 21215 |\n",
+            t << fmt::format("| assembled | 16 screws, each a CP set on the 6 DOFs of a node pair | MITC4 | {} | {} (8-node layout: {}) | 6736 / 21215 |\n",
                              assembled_mesh.mesh.element_count(), assembled_mesh.mesh.node_count(),
                              quad8_nodes(assembled_mesh, false));
             t << fmt::format("\nE = 210 GPa, nu = 0.28, rho = 7700 kg/m^3. Reconstructed frame: columns {:.1f} mm, span {:.1f} mm, "
@@ -475,9 +605,10 @@ int main(int argc, char** argv) {
                                  std::get<std::vector<double>>(study.reference().entry("table-2-6/missing-1-change").thesis)[k],
                                  f2[k], kThesisMissing2[k], d2[k],
                                  std::get<std::vector<double>>(study.reference().entry("table-2-6/missing-2-change").thesis)[k]);
-            t << "\nMissing screws (our choice, Fig 2-12 is a picture): missing 1 = L-col-3 (left bracket, column leg, screw "
-                 "nearest the leg's free end at y = W/4), missing 2 = L-col-3 and L-beam-3 (the same screw of the beam leg). "
-                 "Thesis changes as printed in Table 2-6.\n";
+            t << "\nMissing screws (Fig 2-12 is a picture; the best choice of portal_frame_modes --screw-search, README.md): "
+                 "missing 1 = L-col-1 (left bracket, column leg, screw nearest the corner at y = W/4), missing 2 = L-col-1 and "
+                 "L-col-3 (the far screw on the same line of that leg). Screws couple all six DOFs of a node pair. Thesis changes "
+                 "as printed in Table 2-6.\n";
             study.write_markdown("table-2-6.md", t.str());
             std::vector<double> mode;
             for (int k = 0; k < kModes; ++k) mode.push_back(k + 1);

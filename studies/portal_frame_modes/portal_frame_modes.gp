@@ -33,7 +33,7 @@ set xtics autofreq
 # --- Fig 2-12: the screws and our choice of the missing ones -------------------------------------------
 set terminal @term size 1100,520 noenhanced font 'sans,12' background rgb 'white'
 set output figures.'/fig-2-12.'.ext
-set multiplot layout 1,2 title 'Fig 2-12  Screws (16, coupled translations) and the missing-screw cases (our choice)'
+set multiplot layout 1,2 title 'Fig 2-12  Screws (16, CP sets on 6 DOF) and the missing-screw cases (best of the screw search)'
 set size ratio -1
 set title 'elevation: plates, L brackets, screws (projected)'
 set xlabel 'x (m)'

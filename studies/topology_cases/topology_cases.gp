@@ -44,6 +44,7 @@ set ylabel 'Z (mm)'
 set arrow 1 from -80,0 to -80,300 nohead dt 2 lc rgb '#1f77b4' front
 do for [p in "70 80 90"] {
   eval density_mm(results.'/shackle-'.p.'-density.dat', 'Fig 5-5  Shackle body (half model), '.p.' % removed', figures.'/fig-5-5-'.p.'.'.ext)
+  eval density_mm(results.'/shackle-'.p.'-projected-density.dat', 'Fig 5-5  Shackle body, '.p.' % removed, Heaviside projection', figures.'/fig-5-5-'.p.'-projected.'.ext)
 }
 unset arrow 1
 
@@ -54,4 +55,5 @@ set xlabel 'X (mm)'
 set ylabel 'Y (mm)'
 do for [p in "85 90"] {
   eval density_mm(results.'/gripper-'.p.'-density.dat', 'Fig 5-6  Gripper, '.p.' % removed', figures.'/fig-5-6-'.p.'.'.ext)
+  eval density_mm(results.'/gripper-'.p.'-projected-density.dat', 'Fig 5-6  Gripper, '.p.' % removed, Heaviside projection', figures.'/fig-5-6-'.p.'-projected.'.ext)
 }

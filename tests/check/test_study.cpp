@@ -1,8 +1,11 @@
 // The check module: reference files, tolerances, check records, the report.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <filesystem>
 #include <fstream>
+#include <map>
 
 #include <nlohmann/json.hpp>
 
@@ -31,7 +34,7 @@ void write(const fs::path& p, const std::string& text) {
     std::ofstream(p) << text;
 }
 
-const char* kReference = R"(
+const char* kReference = R"toml(
 study = "demo"
 title = "Demo study"
 section = "Sec 9.9"
@@ -44,6 +47,7 @@ source = "Table 9-1"
 quantity = "a value"
 unit = "us"
 basis = "exact"
+kind = "consistency"
 thesis = 1.32
 tolerance = { abs = 0.005 }
 reason = "printed precision"
@@ -53,6 +57,7 @@ id = "table-9-1/steps"
 source = "Table 9-1"
 quantity = "steps"
 basis = "exact"
+kind = "consistency"
 thesis = 1070
 tolerance = { abs = 1.0 }
 reason = "one step"
@@ -64,6 +69,7 @@ id = "table-9-1/series"
 source = "Table 9-1"
 quantity = "three values"
 basis = "model"
+kind = "reproduction"
 thesis = [1.0, 2.0, 3.0]
 tolerance = { rel = 0.1 }
 reason = "mesh"
@@ -73,6 +79,7 @@ id = "fig-9-2/order"
 source = "Fig 9-2"
 quantity = "ordering"
 basis = "trend"
+kind = "trend"
 thesis = "A > B"
 
 [[check]]
@@ -80,15 +87,63 @@ id = "fig-9-2/measured"
 source = "Fig 9-2"
 quantity = "experiment"
 basis = "experiment"
+kind = "shown"
 thesis = 25.0
 judged = false
-)";
 
-std::vector<char*> args(std::vector<std::string>& storage) {
-    std::vector<char*> a;
-    for (auto& s : storage) a.push_back(s.data());
-    return a;
+[[check]]
+id = "table-9-3/miss"
+source = "Table 9-3"
+quantity = "a value our model does not reach yet"
+unit = "Hz"
+basis = "model"
+kind = "reproduction"
+thesis = 10.0
+tolerance = { rel = 0.05 }
+reason = "mesh"
+known_miss = "ours is 20 % low: the joint is too soft (tried: 6-DOF coupling)"
+history = [ { date = "2026-12-01", change = "kind shown -> reproduction, known miss", was = "judged = false", why = "a miss is not hidden as shown" } ]
+
+[[check]]
+id = "table-9-3/modes"
+source = "Table 9-3"
+quantity = "three modes, the second a known miss"
+basis = "model"
+kind = "reproduction"
+thesis = [1.0, 2.0, 3.0]
+labels = ["m1", "m2", "m3"]
+tolerance = { rel = 0.1 }
+reason = "mesh"
+known_miss = "mode 2 is a local mode of our bracket"
+known_miss_labels = ["m2"]
+)toml";
+
+// A kReference study run with every check as expected: the known misses miss (unless the values
+// given make them pass).
+void run_demo_as_expected(Study& study, double miss = 8.0, double mode_2 = 2.5) {
+    study.check("table-9-1/a", 1.32);
+    study.check("table-9-1/steps", 1071.0);
+    const std::vector<double> series = {1.0, 2.0, 3.0};
+    study.check("table-9-1/series", series);
+    study.trend("fig-9-2/order", "A > B");
+    study.check("fig-9-2/measured", 25.5);
+    study.check("table-9-3/miss", miss);
+    const std::vector<double> modes = {1.0, mode_2, 3.0};
+    study.check("table-9-3/modes", modes);
 }
+
+// Command line of the demo study: results under `results`, reference dir/demo.toml.
+struct DemoArgs {
+    std::vector<std::string> storage;
+    std::vector<char*> argv;
+    DemoArgs(const fs::path& reference, const fs::path& results)
+        : storage{"demo", "--results", results.string(), "--reference", reference.string()} {
+        for (auto& a : storage) argv.push_back(a.data());
+    }
+    int argc() const { return static_cast<int>(argv.size()); }
+    char** data() { return argv.data(); }
+};
+
 
 }  // namespace
 
@@ -104,11 +159,18 @@ TEST(Reference, LoadsAllKinds) {
     write(dir.path / "demo.toml", kReference);
     const auto ref = load_reference(dir.path / "demo.toml");
     EXPECT_EQ(ref.study, "demo");
-    ASSERT_EQ(ref.entries.size(), 5u);
+    ASSERT_EQ(ref.entries.size(), 7u);
     EXPECT_TRUE(ref.entry("fig-9-2/order").is_trend());
     EXPECT_TRUE(ref.entry("table-9-1/series").is_series());
     EXPECT_EQ(*ref.entry("table-9-1/steps").follows, 1071.06);
-    EXPECT_FALSE(ref.entry("fig-9-2/measured").judged);
+    EXPECT_FALSE(ref.entry("fig-9-2/measured").judged());
+    EXPECT_EQ(ref.entry("fig-9-2/measured").kind, Kind::Shown);
+    EXPECT_EQ(ref.entry("table-9-1/a").kind, Kind::Consistency);
+    EXPECT_TRUE(ref.entry("table-9-3/miss").is_known_miss());
+    ASSERT_EQ(ref.entry("table-9-3/miss").history.size(), 1u);
+    EXPECT_EQ(ref.entry("table-9-3/miss").history[0].was, "judged = false");
+    EXPECT_TRUE(ref.entry("table-9-3/modes").member_is_known_miss("m2"));
+    EXPECT_FALSE(ref.entry("table-9-3/modes").member_is_known_miss("m1"));
     EXPECT_THROW(ref.entry("nope"), std::out_of_range);
 }
 
@@ -123,13 +185,25 @@ TEST(Reference, RefusesBadFilesNamingTheProblem) {
             EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos) << e.what();
         }
     };
-    expect_error("study = \"x\"\n[[check]]\nid = \"a\"\nsource = \"T\"\nquantity = \"q\"\nbasis = \"exact\"\nthesis = 1\n",
-                 "needs a tolerance");
+    const std::string entry = "study = \"x\"\n[[check]]\nid = \"a\"\nsource = \"T\"\nquantity = \"q\"\nbasis = \"exact\"\n";
+    expect_error(entry + "kind = \"consistency\"\nthesis = 1\n", "needs a tolerance");
+    expect_error(entry + "thesis = 1\ntolerance = { rel = 0.1 }\nreason = \"r\"\n", "lacks 'kind'");
+    expect_error(entry + "kind = \"agreement\"\nthesis = 1\ntolerance = { rel = 0.1 }\nreason = \"r\"\n", "kind 'agreement'");
+    expect_error(entry + "kind = \"reproduction\"\nthesis = 1\ntolerance = { rel = 0.1 }\nreason = \"r\"\njudged = false\n",
+                 "judged = false is only for kind \"shown\"");
+    expect_error(entry + "kind = \"shown\"\nthesis = 1\ntolerance = { rel = 0.1 }\nreason = \"r\"\n", "takes no tolerance");
+    expect_error(entry + "kind = \"shown\"\nthesis = 1\nknown_miss = \"low\"\n", "known_miss is judged");
+    expect_error(entry + "kind = \"reproduction\"\nthesis = 1\ntolerance = { rel = 0.1 }\nreason = \"r\"\nknown_miss = \"\"\n",
+                 "non-empty");
+    expect_error(entry + "kind = \"reproduction\"\nthesis = 1\ntolerance = { rel = 0.1 }\nreason = \"r\"\n"
+                         "history = [ { date = \"2026-01-01\", change = \"c\", why = \"w\" } ]\n",
+                 "lacks 'was'");
+    expect_error(entry + "kind = \"reproduction\"\nthesis = [1, 2]\ntolerance = { rel = 0.1 }\nreason = \"r\"\n"
+                         "known_miss = \"m\"\nknown_miss_labels = [\"3\"]\n",
+                 "names '3'");
     expect_error("study = \"x\"\n[[check]]\nid = \"a\"\nsource = \"T\"\nquantity = \"q\"\nbasis = \"guess\"\nthesis = 1\n",
                  "basis 'guess'");
-    expect_error("study = \"x\"\n[[check]]\nid = \"a\"\nsource = \"T\"\nquantity = \"q\"\nbasis = \"exact\"\nthesis = 1\n"
-                 "tolerance = { rel = 0.1 }\n",
-                 "reason");
+    expect_error(entry + "kind = \"consistency\"\nthesis = 1\ntolerance = { rel = 0.1 }\n", "reason");
     expect_error("study = \"x\"\n[[check]\n", "bad.toml:2");
     EXPECT_THROW(load_reference(dir.path / "missing.toml"), fem::InputError);
 }
@@ -137,11 +211,9 @@ TEST(Reference, RefusesBadFilesNamingTheProblem) {
 TEST(Study, WritesChecksAndFailsOnMissingOrWrongValues) {
     TempDir dir;
     write(dir.path / "demo.toml", kReference);
-    std::vector<std::string> argv_s = {"demo", "--results", (dir.path / "results").string(), "--reference",
-                                       (dir.path / "demo.toml").string()};
-    auto argv = args(argv_s);
+    DemoArgs argv(dir.path / "demo.toml", dir.path / "results");
     {
-        Study study("demo", static_cast<int>(argv.size()), argv.data());
+        Study study("demo", argv.argc(), argv.data());
         EXPECT_TRUE(*study.check("table-9-1/a", 1.3204).passed);
         // 1071.05 misses the printed 1070 by more than a step, but is checked against what follows.
         const auto& steps = study.check("table-9-1/steps", 1071.05);
@@ -150,66 +222,122 @@ TEST(Study, WritesChecksAndFailsOnMissingOrWrongValues) {
         const std::vector<double> series = {1.05, 2.5, 3.0};
         study.check("table-9-1/series", series);
         EXPECT_TRUE(*study.trend("fig-9-2/order", "A > B").passed);
-        // fig-9-2/measured is left out on purpose: finish() must fail the study.
+        // fig-9-2/measured and the table-9-3 entries are left out on purpose: finish() must fail the
+        // study, known misses included (a value the study did not produce is no known miss).
         EXPECT_EQ(study.finish(), 1);
     }
     std::ifstream in(dir.path / "results" / "checks.json");
     const auto j = nlohmann::json::parse(in);
-    ASSERT_EQ(j.size(), 7u);  // a, steps, 3 series members, trend, missing
+    ASSERT_EQ(j.size(), 9u);  // a, steps, 3 series members, trend, 3 missing
     EXPECT_EQ(j[1]["reference"], 1071.06);
     EXPECT_EQ(j[3]["id"], "table-9-1/series/2");
     EXPECT_EQ(j[3]["passed"], false);  // 2.5 vs 2.0 with 10 %
     EXPECT_TRUE(j[5]["tolerance"].is_null());
     EXPECT_EQ(j[6]["id"], "fig-9-2/measured");
     EXPECT_EQ(j[6]["passed"], false);
-    EXPECT_FALSE(fs::exists(dir.path / "results" / "checks.json.partial"));
+    EXPECT_EQ(j[7]["id"], "table-9-3/miss");
+    EXPECT_FALSE(j[7].contains("known_miss"));
+    EXPECT_EQ(verdict(CheckRecord::from_json(j[7])), Verdict::Fail);
+    EXPECT_EQ(j[0]["kind"], "consistency");
+    // The results folder holds the run's set and its manifest, no temporary or staging folder.
+    std::vector<std::string> files;
+    for (const auto& e : fs::directory_iterator(dir.path / "results")) files.push_back(e.path().filename().string());
+    std::sort(files.begin(), files.end());
+    EXPECT_EQ(files, (std::vector<std::string>{"checks.json", "manifest.txt", "runs.json"}));
 }
 
 TEST(Study, ShownValuesAreNotJudgedAndAllPassingExitsZero) {
     TempDir dir;
     write(dir.path / "demo.toml", kReference);
-    std::vector<std::string> argv_s = {"demo", "--results", (dir.path / "results").string(), "--reference",
-                                       (dir.path / "demo.toml").string()};
-    auto argv = args(argv_s);
-    Study study("demo", static_cast<int>(argv.size()), argv.data());
+    DemoArgs argv(dir.path / "demo.toml", dir.path / "results");
+    Study study("demo", argv.argc(), argv.data());
     study.check("table-9-1/a", 1.32);
     study.check("table-9-1/steps", 1071.0);
     const std::vector<double> series = {1.0, 2.0, 3.0};
     study.check("table-9-1/series", series);
     EXPECT_FALSE(*study.trend_holds("fig-9-2/order", false, "B > A").passed);
     EXPECT_FALSE(study.check("fig-9-2/measured", 25.5).passed.has_value());
+    EXPECT_EQ(verdict(study.check("table-9-3/miss", 8.0)), Verdict::KnownMiss);
+    const std::vector<double> modes = {1.0, 2.5, 3.0};
+    study.check("table-9-3/modes", modes);
     EXPECT_EQ(study.finish(), 1);  // the trend failed
+}
+
+TEST(Study, KnownMissesPassTheStudyWhileTheyMissAndFailItWhenTheyPass) {
+    TempDir dir;
+    write(dir.path / "demo.toml", kReference);
+    DemoArgs argv(dir.path / "demo.toml", dir.path / "results");
+    {
+        Study study("demo", argv.argc(), argv.data());
+        run_demo_as_expected(study);
+        EXPECT_EQ(study.finish(), 0);
+        std::map<std::string, Verdict> v;
+        for (const auto& r : study.records()) v[r.id] = verdict(r);
+        EXPECT_EQ(v["table-9-3/miss"], Verdict::KnownMiss);
+        EXPECT_EQ(v["table-9-3/modes/m1"], Verdict::Pass);
+        EXPECT_EQ(v["table-9-3/modes/m2"], Verdict::KnownMiss);
+        EXPECT_EQ(v["fig-9-2/measured"], Verdict::Shown);
+    }
+    {
+        std::ifstream in(dir.path / "results" / "checks.json");
+        const auto j = nlohmann::json::parse(in);
+        const auto r = CheckRecord::from_json(j[7]);
+        EXPECT_EQ(r.id, "table-9-3/miss");
+        EXPECT_EQ(r.kind, Kind::Reproduction);
+        EXPECT_EQ(r.known_miss, "ours is 20 % low: the joint is too soft (tried: 6-DOF coupling)");
+        ASSERT_EQ(r.history.size(), 1u);
+        EXPECT_EQ(r.history[0].why, "a miss is not hidden as shown");
+        EXPECT_EQ(j[8]["id"], "table-9-3/modes/m1");
+        EXPECT_FALSE(j[8].contains("known_miss"));  // only the listed member is a known miss
+        EXPECT_EQ(j[9]["known_miss"], "mode 2 is a local mode of our bracket");
+    }
+    for (int which = 0; which < 2; ++which) {  // the single value, then the series member, start to pass
+        Study study("demo", argv.argc(), argv.data());
+        run_demo_as_expected(study, which == 0 ? 10.1 : 8.0, which == 1 ? 2.0 : 2.5);
+        std::map<std::string, Verdict> v;
+        for (const auto& r : study.records()) v[r.id] = verdict(r);
+        EXPECT_EQ(v["table-9-3/miss"], which == 0 ? Verdict::UnexpectedPass : Verdict::KnownMiss);
+        EXPECT_EQ(v["table-9-3/modes/m2"], which == 1 ? Verdict::UnexpectedPass : Verdict::KnownMiss);
+        EXPECT_EQ(study.finish(), 1);
+    }
+}
+
+TEST(Verdict, OneClassification) {
+    CheckRecord r;
+    EXPECT_EQ(verdict(r), Verdict::Shown);
+    r.passed = true;
+    EXPECT_EQ(verdict(r), Verdict::Pass);
+    r.passed = false;
+    EXPECT_EQ(verdict(r), Verdict::Fail);
+    r.known_miss = "why";
+    EXPECT_EQ(verdict(r), Verdict::KnownMiss);
+    EXPECT_FALSE(fails_study(verdict(r)));
+    r.passed = true;
+    EXPECT_EQ(verdict(r), Verdict::UnexpectedPass);
+    EXPECT_TRUE(fails_study(verdict(r)));
+    EXPECT_THROW(CheckRecord::from_json({{"id", "x"}, {"passed", true}}), fem::InputError);
 }
 
 TEST(Study, RefusesUnknownIdsAndOptions) {
     TempDir dir;
     write(dir.path / "demo.toml", kReference);
-    std::vector<std::string> argv_s = {"demo", "--reference", (dir.path / "demo.toml").string(), "--results",
-                                       (dir.path / "r").string()};
-    auto argv = args(argv_s);
-    Study study("demo", static_cast<int>(argv.size()), argv.data());
+    DemoArgs argv(dir.path / "demo.toml", dir.path / "r");
+    Study study("demo", argv.argc(), argv.data());
     EXPECT_THROW(study.check("no/such/id", 1.0), std::out_of_range);
     EXPECT_THROW(study.check("fig-9-2/order", 1.0), std::logic_error);
-    std::vector<std::string> bad = {"demo", "--frobnicate"};
-    auto bad_argv = args(bad);
-    EXPECT_THROW(Study("demo", 2, bad_argv.data()), fem::InputError);
+    std::string name = "demo", option = "--frobnicate";
+    char* bad_argv[] = {name.data(), option.data()};
+    EXPECT_THROW(Study("demo", 2, bad_argv), fem::InputError);
 }
 
 TEST(Report, ListsEveryStudyAndTheDiscrepancies) {
     TempDir dir;
     fs::create_directories(dir.path / "reference");
     write(dir.path / "reference" / "demo.toml", kReference);
-    std::vector<std::string> argv_s = {"demo", "--results", (dir.path / "results" / "demo").string(), "--reference",
-                                       (dir.path / "reference" / "demo.toml").string()};
-    auto argv = args(argv_s);
+    DemoArgs argv(dir.path / "reference" / "demo.toml", dir.path / "results" / "demo");
     {
-        Study study("demo", static_cast<int>(argv.size()), argv.data());
-        study.check("table-9-1/a", 1.32);
-        study.check("table-9-1/steps", 1071.0);
-        const std::vector<double> series = {1.0, 2.0, 3.0};
-        study.check("table-9-1/series", series);
-        study.trend("fig-9-2/order", "A > B");
-        study.check("fig-9-2/measured", 25.5);
+        Study study("demo", argv.argc(), argv.data());
+        run_demo_as_expected(study);
         study.record_run({"run 1", {{"steps", 100}, {"wall_s", 0.5}}});
         EXPECT_EQ(study.finish(), 0);
     }
@@ -224,11 +352,32 @@ TEST(Report, ListsEveryStudyAndTheDiscrepancies) {
     EXPECT_EQ(write_report({dir.path / "reference", dir.path / "results", dir.path / "figures"}), 0);
     std::ifstream md_in(dir.path / "figures" / "REPORT.md");
     const std::string md((std::istreambuf_iterator<char>(md_in)), {});
+    EXPECT_NE(md.find("## Scorecard"), std::string::npos);
     EXPECT_NE(md.find("## Thesis discrepancies"), std::string::npos);
     EXPECT_NE(md.find("the printed value is twice another row"), std::string::npos);
     EXPECT_NE(md.find("### Table 9-1"), std::string::npos);
     EXPECT_NE(md.find("| other |"), std::string::npos);
     EXPECT_NE(md.find("not run"), std::string::npos);
     EXPECT_NE(md.find("Solver runs"), std::string::npos);
+    // Headline by kind, reproduction first: series 3 + miss + 3 modes = 7 reproduction records, 5 pass.
+    EXPECT_NE(md.find("Reproduction: 5 of 7 thesis results reproduced by our models, 2 not reproduced (known misses), 0 failed"),
+              std::string::npos) << md.substr(0, 2000);
+    EXPECT_NE(md.find("partly reproduced (5 of 7)"), std::string::npos);
+    EXPECT_NE(md.find("## Not reproduced"), std::string::npos);
+    EXPECT_NE(md.find("the joint is too soft"), std::string::npos);
+    EXPECT_NE(md.find("## Entries changed after their first run"), std::string::npos);
+    EXPECT_NE(md.find("a miss is not hidden as shown"), std::string::npos);
     EXPECT_TRUE(fs::exists(dir.path / "figures" / "REPORT.html"));
+
+    // fem-report refuses a reference entry without a kind, naming the file and the entry.
+    auto no_kind = std::string(kReference);
+    no_kind.replace(no_kind.find("kind = \"consistency\"\n"), std::string("kind = \"consistency\"\n").size(), "");
+    write(dir.path / "reference" / "other.toml", no_kind);
+    try {
+        write_report({dir.path / "reference", dir.path / "results", dir.path / "figures"});
+        ADD_FAILURE() << "a reference entry without a kind was accepted";
+    } catch (const fem::InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("other.toml"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("'table-9-1/a' lacks 'kind'"), std::string::npos) << e.what();
+    }
 }

@@ -11,6 +11,7 @@
 #include <set>
 
 #include "contact/contact.hpp"
+#include "explicit/rigid_motion.hpp"
 #include "core/error.hpp"
 
 using namespace fem;
@@ -415,7 +416,7 @@ TEST(ContactPenalty, NodeBesideAThickBlockIsNotCapturedByAFarFace) {
     ContactOptions o;
     o.edge_tolerance = 0.05;  // 5 mm on the 0.1 m faces: the probe is within it for the bottom face
     ContactInterface ci("probe beside block", ContactSurface::from_part(m, "probe", kRubber),
-                        RigidSurface::from_part(m, "block", {}, 0.05), o);
+                        ContactSurface::rigid_part(m, "block", 0.05), o);
     std::vector<Vec3> f(m.node_count(), Vec3::Zero());
     ci.evaluate(m.nodes, {}, 0.0, 0.0, f);
     EXPECT_TRUE(ci.contacts().empty());
@@ -436,14 +437,15 @@ TEST(ContactPenalty, NodeBesideAThickBlockIsNotCapturedByAFarFace) {
 // u = mu_s f_n / k, then the node slides with mu(v) f_n of Eq 2-35; dissipation = mu f_n x slip.
 TEST(ContactFriction, StickUntilStaticLimitThenSlideWithEq235) {
     Mesh m = box_hex8(0.1, 0.1, 0.1, 1, 1, 1, "cube");
+    m.append(parallelogram_quad4(Vec3(0.05, 0.05, 0.0), Vec3(2, 0, 0), Vec3(0, 2, 0), 1, 1, "plate"));
     const ContactSurface cube = ContactSurface::from_part(m, "cube", kRubber);
     ContactOptions o;
     o.friction = {0.8, 0.5, 20.0};  // mu_s, mu_d, c_d [s/m]
-    RigidSurface plate = RigidSurface::plane(Vec3(0.05, 0.05, 0.0), Vec3(2, 0, 0), Vec3(0, 2, 0), 1, 1, 0.05);
-    ContactInterface ci("cube on plate", cube, plate, o);
+    ContactInterface ci("cube on plate", cube, ContactSurface::rigid_part(m, "plate", 0.05), o);
     const double g = 1e-4, dt = 1e-5, speed = 0.2;  // mu(0.2 m/s) = 0.5 + 0.3 e^-4
+    const int n_cube = 8;  // the plate's 4 nodes follow: they stay where they are
     std::vector<Vec3> x = m.nodes, v(m.node_count(), Vec3::Zero());
-    for (auto& p : x) p.z() -= g;
+    for (int i = 0; i < n_cube; ++i) x[i].z() -= g;
     std::vector<Vec3> f(m.node_count());
     const double mu_v = o.friction.mu(speed);
     EXPECT_NEAR(mu_v, 0.5 + 0.3 * std::exp(-4.0), 1e-15);
@@ -453,7 +455,7 @@ TEST(ContactFriction, StickUntilStaticLimitThenSlideWithEq235) {
     double kn = 0, fn = 0, slid = 0;
     for (int cycle = 0; cycle < 4000; ++cycle) {
         const bool moving = cycle > 0;
-        for (int i = 0; i < m.node_count(); ++i) {
+        for (int i = 0; i < n_cube; ++i) {
             v[i] = moving ? Vec3(speed, 0, 0) : Vec3::Zero();
             if (moving) x[i].x() += speed * dt;
         }
@@ -547,40 +549,22 @@ TEST(ContactTwoWay, SymmetricPassCatchesMasterNodesInsideSlaveFaces) {
 
 // --- rigid bodies ------------------------------------------------------------------------------
 
-TEST(RigidMotionTest, RotationAboutAnAxisWithRampedSpeed) {
-    // omega ramps 0 -> 2 rad/s over 1 s, then holds: angle(t) = t^2 (t <= 1), 1 + 2 (t - 1).
-    const Vec3 c(1, 2, 0);
-    const RigidMotion m = RigidMotion::rotation(c, Vec3(0, 0, 2), TimeFunction({{0, 0}, {1, 2}}));
-    EXPECT_NEAR(m.angle(0.5), 0.25, 1e-15);
-    EXPECT_NEAR(m.angle(2.0), 3.0, 1e-14);
-    const Vec3 X(2, 2, 0.5);
-    const Vec3 x = m.position(X, 2.0);
-    EXPECT_NEAR((x - (c + Vec3(std::cos(3.0), std::sin(3.0), 0.5))).norm(), 0.0, 1e-14);
-    // Velocity = d position / dt (central difference, h = 1e-6: truncation ~1e-12).
-    for (double t : {0.3, 1.5}) {
-        const double h = 1e-6;
-        const Vec3 fd = (m.position(X, t + h) - m.position(X, t - h)) / (2 * h);
-        EXPECT_NEAR((m.velocity(X, t) - fd).norm(), 0.0, 1e-8);
-    }
-    const RigidMotion tr = RigidMotion::translation(Vec3(0, 0, -1), TimeFunction::constant(3.0));
-    EXPECT_NEAR((tr.position(X, 2.0) - (X - Vec3(0, 0, 6))).norm(), 0.0, 1e-14);
-    EXPECT_THROW(RigidMotion::rotation(c, Vec3::Zero(), {}), InputError);
-    EXPECT_THROW(TimeFunction({{1, 0}, {1, 2}}), InputError);
-}
-
-// A rigid surface taken from a mesh part rotates with its motion, and the reaction on it (force
-// and moment) is minus what its contacts put on the slave nodes.
-TEST(RigidSurfaceTest, RotatingRigidPartPushesNodesAndReportsTheReaction) {
+// A rigid part's surface (the model moves its nodes: here the test puts them where the motion
+// says) pushes nodes, and the reaction on it (force and moment) is minus what its contacts put on
+// the slave nodes; the rigid master's nodes receive no forces.
+TEST(RigidMasterTest, RotatingRigidPartPushesNodesAndReportsTheReaction) {
     Mesh m = box_hex8(0.2, 0.2, 0.2, 2, 2, 2, "drum");
     m.translate(Vec3(-0.1, -0.1, -0.1));
     Mesh probe = box_hex8(0.05, 0.05, 0.05, 1, 1, 1, "probe");
     probe.translate(Vec3(0.099, -0.025, -0.025));  // its x-min face 1 mm inside the cube's x = 0.1 face
     m.append(probe);
-    RigidSurface drum = RigidSurface::from_part(m, "drum", RigidMotion::rotation(Vec3::Zero(), Vec3::UnitZ(),
-                                                                                 TimeFunction::constant(1.0)),
-                                                0.02);
-    EXPECT_EQ(drum.points.size(), 26u);
+    const RigidMotion motion = RigidMotion::rotation(Vec3::Zero(), Vec3::UnitZ(), Curve::constant(1.0));
+    ContactSurface drum = ContactSurface::rigid_part(m, "drum", 0.02);
+    EXPECT_TRUE(drum.rigid);
+    EXPECT_TRUE(drum.nodes.empty());
+    EXPECT_EQ(drum.segments.size(), 24u);
     ContactInterface ci("probe on drum", ContactSurface::from_part(m, "probe", kRubber), std::move(drum));
+    EXPECT_TRUE(ci.rigid_master());
     std::vector<Vec3> f(m.node_count(), Vec3::Zero());
     ci.evaluate(m.nodes, {}, 0.0, 0.0, f);
     ASSERT_EQ(ci.contacts().size(), 4u);
@@ -589,29 +573,40 @@ TEST(RigidSurfaceTest, RotatingRigidPartPushesNodesAndReportsTheReaction) {
         F += f[i];
         M += m.nodes[i].cross(f[i]);
     }
+    for (int i = 0; i < 27; ++i) EXPECT_EQ(f[i], Vec3::Zero()) << i;  // the drum's nodes
     EXPECT_GT(F.x(), 0.0);
     EXPECT_NEAR((ci.force_on_master() + F).norm(), 0.0, 1e-12 * F.norm());
     // The moment about the axis: frictionless forces on the x face are along x, so the moments
     // of the nodes (y = -0.025 and 0.025) cancel; compare both sides anyway.
     const Resultant r = resultant(std::vector<int>{27, 28, 29, 30, 31, 32, 33, 34}, f, m.nodes, Vec3::Zero());
     EXPECT_NEAR((ci.moment_on_master(Vec3::Zero()) + r.moment).norm(), 0.0, 1e-9 * F.norm());
+    EXPECT_NEAR(ci.max_penetration(), 1e-3, 1e-12);
+    EXPECT_NEAR(ci.max_penetration_fraction(), 1e-3 / 0.05, 1e-10);  // of the probe's 50 mm element
     // After a half turn (t = pi at 1 rad/s) the cube covers itself: the face that was at x = -0.1
     // is now at x = 0.1 and the same four nodes are 1 mm deep again, against a different segment.
     const int seg0 = ci.contacts()[0].segment;
+    std::vector<Vec3> x = m.nodes;
+    for (int i = 0; i < 27; ++i) x[i] = motion.position(m.nodes[i], std::numbers::pi);
+    EXPECT_NEAR((x[0] - Vec3(-m.nodes[0].x(), -m.nodes[0].y(), m.nodes[0].z())).norm(), 0.0, 1e-15);
     for (auto& fi : f) fi.setZero();
-    ci.evaluate(m.nodes, {}, std::numbers::pi, 0.0, f);
+    ci.evaluate(x, {}, std::numbers::pi, 0.0, f);
     ASSERT_EQ(ci.contacts().size(), 4u);
     EXPECT_NE(ci.contacts()[0].segment, seg0);
     EXPECT_NEAR(ci.contacts()[0].gap, -1e-3, 1e-12);
-    const Vec3 p0 = ci.rigid()->motion.position(ci.rigid()->points[0], std::numbers::pi);
-    EXPECT_NEAR((ci.rigid_positions()[0] - p0).norm(), 0.0, 1e-15);
-    const Vec3 X0 = ci.rigid()->points[0];
-    EXPECT_NEAR((p0 - Vec3(-X0.x(), -X0.y(), X0.z())).norm(), 0.0, 1e-15);  // half turn about the z axis through 0
-    EXPECT_THROW(RigidSurface::from_part(m, "drum", {}, 0.0), InputError);
+    EXPECT_THROW(ContactSurface::rigid_part(m, "drum", 0.0), InputError);
+    // A rigid side is a master only; two-way contact needs a deformable master.
+    EXPECT_THROW(ContactInterface("bad", ContactSurface::rigid_part(m, "drum", 0.02),
+                                  ContactSurface::from_part(m, "probe", kRubber)),
+                 InputError);
+    ContactOptions two;
+    two.two_way = true;
+    EXPECT_THROW(ContactInterface("bad", ContactSurface::from_part(m, "probe", kRubber),
+                                  ContactSurface::rigid_part(m, "drum", 0.02), two),
+                 InputError);
     ContactOptions bad;
     bad.penalty_scale = 0.0;
     EXPECT_THROW(ContactInterface("bad", ContactSurface::from_part(m, "probe", kRubber),
-                                  RigidSurface::plane(Vec3::Zero(), Vec3::UnitX(), Vec3::UnitY(), 1, 1, 0.1), bad),
+                                  ContactSurface::rigid_part(m, "drum", 0.02), bad),
                  InputError);
 }
 

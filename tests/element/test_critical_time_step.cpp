@@ -56,6 +56,36 @@ TEST(CharacteristicLength, RegularTetrahedronIsItsAltitude) {
     EXPECT_NEAR(cfl::tetrahedron_length(sliver), 0.01, 1e-14);
 }
 
+// A straight-edged tet10 from its corners: mid-edge nodes on edges 01, 12, 20, 03, 23, 13 (Gmsh order).
+std::array<Vec3, 10> straight_tet10(const std::array<Vec3, 4>& c) {
+    auto m = [&](int i, int j) -> Vec3 { return 0.5 * (c[i] + c[j]); };
+    return {c[0], c[1], c[2], c[3], m(0, 1), m(1, 2), m(2, 0), m(0, 3), m(2, 3), m(1, 3)};
+}
+
+TEST(CharacteristicLength, Tet10SubTetrahedraOfARegularTetrahedron) {
+    // Corner pieces are regular with edge a/2 (altitude a sqrt(2/3) / 2); each octahedron piece (the
+    // octahedron of edge a/2 split along a diagonal) has the smallest altitude, a / (2 sqrt 2).
+    const double a = 2.0;
+    const std::array<Vec3, 4> c = {Vec3(0, 0, 0), Vec3(a, 0, 0), Vec3(a / 2, a * std::sqrt(3.0) / 2, 0),
+                                   Vec3(a / 2, a * std::sqrt(3.0) / 6, a * std::sqrt(2.0 / 3.0))};
+    const auto x = straight_tet10(c);
+    EXPECT_NEAR(cfl::tet10_subtetrahedron_length(x), a / (2 * std::sqrt(2.0)), 1e-14);
+    EXPECT_THROW(cfl::tet10_subtetrahedron_length(std::span<const Vec3>(x.data(), 4)), InputError);
+}
+
+TEST(CharacteristicLength, Tet10SubTetrahedraAreAtMostHalfTheCornerAltitude) {
+    // The corner pieces of a straight-edged tet10 are the element halved about each corner, so the
+    // rule never exceeds half of Table 2-1's corner altitude; a sliver keeps its small altitude.
+    const std::array<Vec3, 4> skew = {Vec3(0, 0, 0), Vec3(3, 0.2, 0), Vec3(0.5, 1.5, 0.1), Vec3(1, 0.7, 2.2)};
+    const auto x = straight_tet10(skew);
+    const double corner = cfl::tetrahedron_length(skew), sub = cfl::tet10_subtetrahedron_length(x);
+    EXPECT_LE(sub, 0.5 * corner + 1e-14);
+    EXPECT_GT(sub, 0.2 * corner);
+    // Node order matters: the same element with its corners relabelled gives the same length.
+    const std::array<Vec3, 4> relabelled = {skew[2], skew[0], skew[3], skew[1]};
+    EXPECT_NEAR(cfl::tet10_subtetrahedron_length(straight_tet10(relabelled)), sub, 1e-14);
+}
+
 TEST(CriticalTimeStep, ShellsUsePlateWaveSpeed) {
     const std::array<Vec3, 4> quad = {Vec3(0, 0, 0), Vec3(0.01, 0, 0), Vec3(0.01, 0.01, 0), Vec3(0, 0.01, 0)};
     EXPECT_NEAR(cfl::critical_time_step(ElementShape::Quad4, quad, kAl), 0.01 / 5355.2462, 1e-12);

@@ -5,9 +5,22 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 
+#include "core/error.hpp"
 #include "explicit/solver.hpp"
 
 namespace fem::test {
+
+/// The message of the InputError that f() throws ("no error" when it throws none), for tests that
+/// check that bad input is refused naming the culprit.
+template <class F>
+std::string input_error(F&& f) {
+    try {
+        f();
+    } catch (const InputError& e) {
+        return e.what();
+    }
+    return "no error";
+}
 
 /// Options for a test run: no summary print, no progress line.
 inline ExplicitOptions quiet(double end_time) {

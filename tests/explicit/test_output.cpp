@@ -16,6 +16,15 @@ namespace fs = std::filesystem;
 
 namespace {
 const ElasticMaterial kSteel = ElasticMaterial::make("steel", 210e9, 0.3, 7800);
+
+// A steel bar clamped at x = 0 and pulled sideways at its free end (10 N per node, ramped over 0.1 ms).
+std::unique_ptr<ExplicitModel> pulled_bar(const Mesh& mesh) {
+    auto model = std::make_unique<ExplicitModel>(mesh);
+    model->add_hex8("bar", kSteel);
+    model->fix(mesh.node_set("x0"), Dofs::all());
+    model->add_nodal_force(mesh.node_set("x1"), Vec3(0, 10, 0), Curve({{0, 0}, {1e-4, 1}}));
+    return model;
+}
 }
 
 TEST(ExplicitOutput, WritesHistoriesVtuAndSummary) {
@@ -23,11 +32,8 @@ TEST(ExplicitOutput, WritesHistoriesVtuAndSummary) {
     fs::remove_all(dir);
     fs::create_directories(dir);
     Mesh mesh = box_hex8(0.1, 0.02, 0.02, 5, 1, 1, "bar");
-    ExplicitModel model(mesh);
-    model.add_hex8("bar", kSteel);
-    model.fix(mesh.node_set("x0"), Dofs::all());
+    auto model = pulled_bar(mesh);
     const int tip = mesh.node_set("x1")[0];
-    model.add_nodal_force(mesh.node_set("x1"), Vec3(0, 10, 0), Curve({{0, 0}, {1e-4, 1}}));
     ExplicitOptions o;
     o.end_time = 2e-4;
     o.progress = false;
@@ -38,7 +44,7 @@ TEST(ExplicitOutput, WritesHistoriesVtuAndSummary) {
     o.h5_path = dir / "run.h5";
     o.pvd_path = dir / "run.pvd";
     o.vtu_interval = 5e-5;
-    ExplicitSolver solver(model, o);
+    ExplicitSolver solver(*model, o);
     const RunSummary sum = solver.run();
     ASSERT_TRUE(fs::exists(o.h5_path));
     ASSERT_TRUE(fs::exists(o.pvd_path));
@@ -142,7 +148,7 @@ TEST(ExplicitInput, BadRequestsNameTheCulprit) {
     } catch (const InputError& e) {
         EXPECT_NE(std::string(e.what()).find("nothere"), std::string::npos);
     }
-    EXPECT_THROW(Curve({{0, 1}, {0, 2}}, "bad"), InputError);
+    EXPECT_THROW(Curve({{0, 1}, {0, 2}, {0, 3}}, "bad"), InputError);
     EXPECT_THROW(model.prescribe_velocity({0}, 4, 1.0), InputError);
 }
 
@@ -227,16 +233,13 @@ TEST(ExplicitLoads, PrescribedMotionIsFollowedExactly) {
 // An observer can end the run early (e.g. once contact is over); the summary reports the time reached.
 TEST(ExplicitOutput, ObserverCanStopTheRun) {
     Mesh mesh = box_hex8(0.1, 0.02, 0.02, 5, 1, 1, "bar");
-    ExplicitModel model(mesh);
-    model.add_hex8("bar", kSteel);
-    model.fix(mesh.node_set("x0"), Dofs::all());
-    model.add_nodal_force(mesh.node_set("x1"), Vec3(0, 10, 0), Curve({{0, 0}, {1e-4, 1}}));
+    auto model = pulled_bar(mesh);
     ExplicitOptions o;
     o.end_time = 1e-3;
     o.progress = false;
     o.print_summary = false;
     o.history_interval = 1e-5;
-    ExplicitSolver solver(model, o);
+    ExplicitSolver solver(*model, o);
     solver.observer = [](const ExplicitSolver& s) {
         if (s.time() >= 2e-4) s.request_stop();
     };
@@ -244,4 +247,77 @@ TEST(ExplicitOutput, ObserverCanStopTheRun) {
     EXPECT_GE(sum.end_time, 2e-4);
     EXPECT_LT(sum.end_time, 2e-4 + 2e-5);  // stopped at the first sample at or after 0.2 ms
     EXPECT_NEAR(solver.history().time.back(), sum.end_time, 1e-15);
+}
+
+// The observer on its own schedule: every cycle (observer_interval 0) while the history stores a
+// sample every 0.1 ms only, or every 50 us; max_von_mises(part) is this cycle's element maximum, the
+// same as the history's maxima when the history stores every cycle.
+TEST(ExplicitOutput, ObserverIntervalIsIndependentOfTheHistory) {
+    Mesh mesh = box_hex8(0.1, 0.02, 0.02, 5, 1, 1, "bar");
+    std::vector<double> vm_every_cycle, vm_history;
+    long calls = 0;
+    {
+        auto model = pulled_bar(mesh);
+        ExplicitOptions o;
+        o.end_time = 1e-3, o.progress = false, o.print_summary = false, o.history_interval = 1e-4, o.observer_interval = 0;
+        ExplicitSolver solver(*model, o);
+        solver.observer = [&](const ExplicitSolver& s) {
+            ++calls;
+            vm_every_cycle.push_back(s.max_von_mises("bar"));
+        };
+        const RunSummary sum = solver.run();
+        EXPECT_EQ(calls, sum.steps + 1);  // the start and every cycle
+        EXPECT_LE(solver.history().time.size(), 12u);
+        EXPECT_EQ(solver.max_von_mises("nothere"), 0.0);
+    }
+    {
+        auto model = pulled_bar(mesh);
+        ExplicitOptions o;
+        o.end_time = 1e-3, o.progress = false, o.print_summary = false, o.history_interval = 0.0;
+        ExplicitSolver solver(*model, o);
+        solver.run();
+        vm_history = solver.history().max_von_mises.at("bar");
+    }
+    EXPECT_EQ(vm_every_cycle, vm_history);
+    {
+        auto model = pulled_bar(mesh);
+        ExplicitOptions o;
+        o.end_time = 1e-3, o.progress = false, o.print_summary = false, o.history_interval = 0.0, o.observer_interval = 5e-5;
+        ExplicitSolver solver(*model, o);
+        std::vector<double> t;
+        solver.observer = [&](const ExplicitSolver& s) { t.push_back(s.time()); };
+        const RunSummary sum = solver.run();
+        ASSERT_GE(t.size(), 20u);
+        EXPECT_LE(t.size(), 22u);  // 0, ~every 50 us to 1 ms, and the end
+        for (std::size_t i = 1; i + 1 < t.size(); ++i) EXPECT_GE(t[i] - t[i - 1], 5e-5 * (1 - 1e-9));
+        EXPECT_EQ(t.back(), sum.end_time);
+    }
+}
+
+// The summary splits the wall time like LS-DYNA's timing table: every phase >= 0, the phases and
+// "other" add up to the wall time, element forces took time, text and JSON carry the table.
+TEST(ExplicitOutput, SummarySplitsTheWallTime) {
+    Mesh mesh = box_hex8(0.1, 0.02, 0.02, 20, 4, 4, "bar");
+    auto model = pulled_bar(mesh);
+    ExplicitOptions o;
+    o.end_time = 2e-4;
+    o.progress = false;
+    o.print_summary = false;
+    ExplicitSolver solver(*model, o);
+    const RunSummary sum = solver.run();
+    const TimingSummary& T = sum.timing;
+    for (double t : {T.elements, T.contact_search, T.contact_forces, T.constraints, T.update, T.output, T.other})
+        EXPECT_GE(t, 0.0);
+    EXPECT_GT(T.elements, 0.0);
+    EXPECT_GT(T.update, 0.0);
+    EXPECT_EQ(T.contact_search + T.contact_forces, 0.0);  // no contact
+    const double total = T.elements + T.contact_search + T.contact_forces + T.constraints + T.update + T.output + T.other;
+    EXPECT_NEAR(total, sum.wall_s, 1e-9 + 1e-9 * sum.wall_s);
+    EXPECT_GE(T.clock_reads, 5 * sum.steps);  // five laps per cycle without contact
+    EXPECT_GT(T.timer_overhead, 0.0);
+    EXPECT_NE(sum.text().find("element forces"), std::string::npos);
+    const nlohmann::json j = sum.to_json();
+    EXPECT_EQ(j["timing_s"]["elements"].get<double>(), T.elements);
+    EXPECT_EQ(j["contact_share"].get<double>(), 0.0);
+    EXPECT_TRUE(j["contact_interfaces"].empty());
 }

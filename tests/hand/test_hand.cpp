@@ -6,8 +6,10 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <set>
 
 #include "core/error.hpp"
+#include "hand/football.hpp"
 #include "hand/scene.hpp"
 #include "mesh/ellipsoid.hpp"
 #include "mesh/finger.hpp"
@@ -92,15 +94,23 @@ TEST(Hand, DrumCarriesObjectSideFingersWithTheFlow) {
     const auto m = d.motion();
     // A point on +z moves in -x; one revolution in 3 s (Table 4-3).
     EXPECT_LT(m.velocity(Vec3(0, 0, 0.1), 0.0).x(), 0.0);
-    EXPECT_NEAR(m.angle(3.0), 2 * std::numbers::pi, 1e-3);
+    const Mat3 R = m.pose(3.0).R;  // one revolution in 3 s: back where it started
+    EXPECT_NEAR((R - Mat3::Identity()).norm(), 0.0, 1e-3);
+    EXPECT_NEAR(std::acos(std::clamp(0.5 * (m.pose(0.75).R.trace() - 1.0), -1.0, 1.0)), 0.5 * std::numbers::pi, 1e-3);
 }
 
-TEST(Hand, SpeedScheduleStepsAndIntegral) {
-    const auto f = speed_schedule({{0.0, 0.457}, {1.19, 0.254}});
-    EXPECT_DOUBLE_EQ(f(1.0), 0.457);
-    EXPECT_DOUBLE_EQ(f(2.0), 0.254);
-    EXPECT_NEAR(f.integral(3.0), 0.457 * 1.19 + 0.254 * 1.81, 1e-9);
-    EXPECT_THROW(speed_schedule({{1.0, 1.0}, {0.5, 2.0}}), InputError);
+TEST(Hand, PalletFollowsTable44Schedule) {
+    // Case 4: 18 in/s, 10 in/s from 1.19 s; the pallet (a rigid part) is where the schedule's exact
+    // integral puts it.
+    const auto c4 = football::table_4_4()[3];
+    HandModel hm(football::scene(c4));
+    const double x0 = hm.plate_centre("pallet", 0.0).x();
+    EXPECT_NEAR(x0 - hm.plate_centre("pallet", 3.0).x(), football::fast * 1.19 + football::slow * 1.81, 1e-12);
+    // The same scene seen from t0 = 0.7 s: the pallet already moved, the switch at model time 0.49 s.
+    football::Options later;
+    later.start = 0.7;
+    HandModel hl(football::scene(c4, later));
+    EXPECT_NEAR(hl.plate_centre("pallet", 3.0 - 0.7).x(), hm.plate_centre("pallet", 3.0).x(), 1e-12);
 }
 
 TEST(Hand, MergedSurfaceKeepsEveryFingersFacesAndNodes) {
@@ -120,13 +130,33 @@ TEST(Hand, MergedSurfaceKeepsEveryFingersFacesAndNodes) {
 }
 
 TEST(Hand, DrumSurfaceFacesOutward) {
-    const auto r = drum_surface(stepped_drum(), 24, 0.01);
-    ASSERT_EQ(r.surface.segments.size(), 48u);
-    for (const auto& s : r.surface.segments) {
-        const Vec3 c = 0.25 * (r.points[s.n[0]] + r.points[s.n[1]] + r.points[s.n[2]] + r.points[s.n[3]]);
-        const Vec3 n = (r.points[s.n[1]] - r.points[s.n[0]]).cross(r.points[s.n[3]] - r.points[s.n[0]]);
+    const Mesh m = drum_mesh(stepped_drum(), 24);
+    const auto r = contact::ContactSurface::rigid_part(m, "drum", 0.01);
+    ASSERT_EQ(r.segments.size(), 48u);
+    for (const auto& s : r.segments) {
+        const auto& x = m.nodes;
+        const Vec3 c = 0.25 * (x[s.n[0]] + x[s.n[1]] + x[s.n[2]] + x[s.n[3]]);
+        const Vec3 n = (x[s.n[1]] - x[s.n[0]]).cross(x[s.n[3]] - x[s.n[0]]);
         EXPECT_GT(n.dot(Vec3(c.x(), 0, c.z())), 0.0);  // the quad's normal points away from the axis
     }
+}
+
+TEST(Hand, HalfFootballCutFaceIsNoContactSurface) {
+    // The cut face (z = 184 mm, the symmetry plane) is where the mirrored half is: no wall there.
+    HandModel hm(football::scene(football::table_4_4()[0]));
+    const auto& sym = hm.mesh().node_set("symmetry-football");
+    const std::set<int> on(sym.begin(), sym.end());
+    const auto& ball = hm.contact("fingers on football").master_surface();
+    for (const auto& s : ball.segments) {
+        int n_on = 0;
+        for (int a = 0; a < s.count; ++a) n_on += on.count(s.n[a]);
+        EXPECT_LT(n_on, s.count);
+    }
+    auto full = contact::ContactSurface::from_part(hm.mesh(), "football", hm.scene().objects[0].material);
+    const std::size_t all = full.segments.size();
+    EXPECT_EQ(full.remove_faces_on(sym), all - ball.segments.size());
+    EXPECT_GT(all - ball.segments.size(), 0u);
+    EXPECT_EQ(full.nodes, ball.nodes);
 }
 
 // A scene of the hand alone, spinning at the drum's speed from t = 0: with co-rotating damping the
@@ -150,21 +180,4 @@ TEST(Hand, CoRotatingDampingDoesNotDragARigidSpin) {
     const double absolute = tip_lag(DampingFrame::absolute), corotating = tip_lag(DampingFrame::drum);
     EXPECT_GT(absolute, 1e-5);                     // trails: alpha m v drag
     EXPECT_LT(std::abs(corotating), 0.05 * absolute);  // only the centrifugal stretch's tangential share
-}
-
-TEST(Hand, PlateScheduleCanChangeDuringARun) {
-    Scene s;
-    s.hand.fingers = {table_4_1()[3]};
-    Plate p;
-    p.part = "pallet";
-    p.centre = Vec3(0.5, -0.02, 0.16);
-    p.u = Vec3(0.2, 0, 0), p.v = Vec3(0, 0, -0.05);
-    p.schedule = {{0.0, 1.0}};
-    s.plates.push_back(p);
-    HandModel hm(s);
-    EXPECT_NEAR(hm.plate_centre("pallet", 1.0).x(), 0.5 - 1.0, 1e-12);
-    hm.set_plate_schedule("pallet", {{0.0, 1.0}, {0.5, 0.25}});
-    EXPECT_NEAR(hm.plate_centre("pallet", 0.5).x(), 0.5 - 0.5, 1e-6);      // unchanged up to the switch
-    EXPECT_NEAR(hm.plate_centre("pallet", 1.0).x(), 0.5 - 0.625, 1e-6);
-    EXPECT_THROW(hm.set_plate_schedule("belt", {{0.0, 1.0}}), InputError);
 }

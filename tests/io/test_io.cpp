@@ -1,13 +1,16 @@
 // Output writers: atomic files, gnuplot tables, VTU/PVD, HDF5.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <thread>
 
 #include "core/error.hpp"
 #include "io/atomic_file.hpp"
 #include "io/hdf5.hpp"
+#include "io/run_folder.hpp"
 #include "io/table.hpp"
 #include "io/vtu.hpp"
 #include "mesh/mesh.hpp"
@@ -23,10 +26,17 @@ fs::path scratch(const std::string& name) {
     return p;
 }
 std::string slurp(const fs::path& p) {
-    std::ifstream in(p);
+    std::ifstream in(p, std::ios::binary);
     std::stringstream s;
     s << in.rdbuf();
     return s.str();
+}
+// Every file and folder name under dir (hidden ones included), relative, sorted.
+std::vector<std::string> files_in(const fs::path& dir) {
+    std::vector<std::string> names;
+    for (const auto& e : fs::recursive_directory_iterator(dir)) names.push_back(fs::relative(e.path(), dir).generic_string());
+    std::sort(names.begin(), names.end());
+    return names;
 }
 }  // namespace
 
@@ -44,7 +54,7 @@ TEST(AtomicFile, NothingUnderTheFinalNameUntilCommit) {
         f.stream() << "abandoned";
     }  // destroyed without commit: e.g. an exception on the way
     EXPECT_FALSE(fs::exists(dir / "b.txt"));
-    EXPECT_FALSE(fs::exists(dir / "b.txt.partial"));
+    EXPECT_EQ(files_in(dir), std::vector<std::string>{"a.txt"});  // no temporary left behind
     EXPECT_THROW(io::AtomicFile(fs::path("/proc/no/such/dir/x.txt")), InputError);
 }
 
@@ -106,4 +116,85 @@ TEST(Hdf5, RoundTripAndAtomic) {
     EXPECT_EQ(t.rows(), 3);
     EXPECT_DOUBLE_EQ(t(2, 0), 0.2);
     EXPECT_THROW(io::read_h5_matrix(dir / "r.h5", "nope"), InputError);
+}
+
+TEST(RunFolder, ReplacesThePreviousSetAsAUnit) {
+    const auto dir = scratch("run_folder") / "out";
+    {  // first run: three files (one in a subfolder)
+        io::RunFolder run(dir, "test");
+        EXPECT_TRUE(fs::exists(dir / ".lock"));
+        io::write_text_file(run.staging() / "a.txt", "1");
+        io::write_text_file(run.staging() / "b.txt", "1");
+        io::write_text_file(run.staging() / "sub" / "c.txt", "1");
+        EXPECT_FALSE(fs::exists(dir / "a.txt"));  // nothing under a final name before commit
+        run.commit();
+    }
+    EXPECT_EQ(files_in(dir), (std::vector<std::string>{"a.txt", "b.txt", "manifest.txt", "sub", "sub/c.txt"}));
+    EXPECT_EQ(slurp(dir / "manifest.txt").substr(slurp(dir / "manifest.txt").find('\n') + 1), "a.txt\nb.txt\nsub/c.txt\n");
+    io::write_text_file(dir / "mine.txt", "a user's own file");
+    {  // a run that fails (no commit): the previous set stays as it was
+        io::RunFolder run(dir, "test");
+        io::write_text_file(run.staging() / "a.txt", "half");
+    }
+    EXPECT_EQ(slurp(dir / "a.txt"), "1");
+    EXPECT_EQ(files_in(dir).size(), 6u);
+    {  // second run writes only a.txt: b.txt and sub/c.txt were the previous run's and go
+        io::RunFolder run(dir, "test");
+        io::write_text_file(run.staging() / "a.txt", "2");
+        run.commit();
+    }
+    EXPECT_EQ(files_in(dir), (std::vector<std::string>{"a.txt", "manifest.txt", "mine.txt"}));
+    EXPECT_EQ(slurp(dir / "a.txt"), "2");
+}
+
+TEST(RunFolder, RefusesAConcurrentRunAndCleansKilledRuns) {
+    const auto dir = scratch("run_folder_lock");
+    {
+        io::RunFolder first(dir, "first");
+        try {
+            io::RunFolder second(dir, "second");
+            ADD_FAILURE() << "two runs share a folder";
+        } catch (const InputError& e) {
+            EXPECT_NE(std::string(e.what()).find("is in use by another run (first pid"), std::string::npos) << e.what();
+        }
+    }
+    // What a killed run leaves: its staging folder and a temporary; the next run removes both.
+    fs::create_directories(dir / ".run-999999-1");
+    io::write_text_file(dir / ".run-999999-1" / "modes.h5", "half");
+    io::write_text_file(dir / "frequencies.csv.999999-0.partial", "half");
+    {
+        io::RunFolder run(dir, "test");
+        EXPECT_FALSE(fs::exists(dir / ".run-999999-1"));
+        EXPECT_FALSE(fs::exists(dir / "frequencies.csv.999999-0.partial"));
+    }
+    EXPECT_TRUE(files_in(dir).empty());
+}
+
+TEST(RunFolder, AnUnwritableFolderIsRefusedBeforeTheRun) {
+    const auto dir = scratch("run_folder_bad");
+    io::write_text_file(dir / "file", "x");
+    EXPECT_THROW(io::RunFolder(dir / "file", "test"), InputError);           // a file, not a folder
+    EXPECT_THROW(io::RunFolder(dir / "file" / "sub", "test"), InputError);   // cannot be created
+    EXPECT_THROW(io::RunFolder("/proc/fem-no-such-folder", "test"), InputError);
+    {  // a run that fails leaves no folder it created
+        io::RunFolder run(dir / "new", "test");
+    }
+    EXPECT_FALSE(fs::exists(dir / "new"));
+}
+
+TEST(H5Writer, IdenticalContentGivesIdenticalBytes) {
+    // No object time stamps: two files written at different times are byte for byte the same.
+    const auto dir = scratch("h5_bytes");
+    for (const char* name : {"a.h5", "b.h5"}) {
+        io::H5Writer h5(dir / name);
+        h5.write("group/values", std::vector<double>{1, 2, 3});
+        h5.write("matrix", Eigen::MatrixXd::Identity(3, 2));
+        h5.write_ints("ids", {4, 5});
+        h5.attribute("/", "program", "test");
+        h5.attribute("group/values", "unit", 1.0);
+        h5.commit();
+        if (std::string(name) == "a.h5") std::this_thread::sleep_for(std::chrono::milliseconds(1100));
+    }
+    EXPECT_EQ(slurp(dir / "a.h5"), slurp(dir / "b.h5"));
+    EXPECT_EQ(files_in(dir), (std::vector<std::string>{"a.h5", "b.h5"}));
 }

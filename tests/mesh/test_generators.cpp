@@ -2,6 +2,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
+#include <string>
 
 #include "core/error.hpp"
 #include "mesh/finger.hpp"
@@ -79,4 +81,16 @@ TEST(LineBeam2, CountsLengthAndEnds) {
     EXPECT_EQ(m.node_set("start"), std::vector<int>{0});
     EXPECT_EQ(m.node_set("end"), std::vector<int>{10});
     EXPECT_THROW(line_beam2(Vec3(0, 0, 0), Vec3(1, 0, 0), 0), InputError);
+}
+
+TEST(Generators, RefuseCountsBeyondIntBeforeAllocating) {
+    // 70000 x 70000 quad4: 4.9e9 elements would overflow the int node numbering (issue 14).
+    try {
+        rectangle_quads(1, 1, 70000, 70000);
+        ADD_FAILURE() << "accepted";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("a 70000 x 70000 quad4 grid has 4.9e+09 nodes"), std::string::npos) << e.what();
+    }
+    EXPECT_THROW(box_hex8(1, 1, 1, 2000, 2000, 2000), InputError);
+    EXPECT_THROW(line_beam2(Vec3::Zero(), Vec3::UnitX(), std::numeric_limits<int>::max()), InputError);
 }

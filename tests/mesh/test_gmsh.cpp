@@ -263,3 +263,19 @@ TEST(ReadGmsh, ErrorsNameTheFile) {
                "$EndNodes\n$Elements\n1\n1 9 2 1 1 1 2 3 4 5 6\n$EndElements\n");
     expect_error(dir.file("tri6.msh"), "Triangle 6");
 }
+
+// A read that Gmsh fails midway must not spoil later reads in the same process and session (Gmsh
+// 4.8's open() kept a "busy" lock after such a failure, and every later file read as empty; found by
+// tests/fuzz/fuzz_gmsh, which keeps one session for its whole run).
+TEST(ReadGmsh, AFailedReadDoesNotSpoilTheNextOne) {
+    TempDir dir;
+    const std::string tet = "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n4\n1 0 0 0\n2 1 0 0\n3 0 1 0\n4 0 0 1\n$EndNodes\n"
+                            "$Elements\n1\n1 4 2 1 1 1 2 3 4\n$EndElements\n";
+    write_text(dir.file("tet.msh"), tet);
+    write_text(dir.file("short.msh"), "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n4\n1 0 0 0\n2 1 0 0\n3 0 1 0\n"
+                                      "4 0 0 1\n$EndNodes\n$Elements\n1\n1 4 2 1 1 1 2\n$EndElements\n");
+    GmshSession outer;  // as a program that reads several files would hold
+    EXPECT_EQ(read_gmsh(dir.file("tet.msh")).element_count(), 1);
+    EXPECT_THROW(read_gmsh(dir.file("short.msh")), InputError);
+    EXPECT_EQ(read_gmsh(dir.file("tet.msh")).element_count(), 1);
+}

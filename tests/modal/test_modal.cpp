@@ -215,3 +215,47 @@ TEST(Modal, SimplySupportedShellPlateMatchesKirchhoff) {
     EXPECT_NEAR(r.frequencies_hz(2) / (5 * base), 1.0, 0.03);
     for (int k = 0; k < 3; ++k) EXPECT_LT(r.residuals(k), 1e-8);
 }
+
+namespace {
+
+// K = diag(1, 4, 9), M = I: eigenvalues 1, 4, 9 exactly (lower triangles, as solve_modes takes them).
+std::pair<Eigen::SparseMatrix<double>, Eigen::SparseMatrix<double>> diagonal_problem(double k0 = 1.0, double m0 = 1.0) {
+    Eigen::SparseMatrix<double> K(3, 3), M(3, 3);
+    for (int i = 0; i < 3; ++i) K.insert(i, i) = (i + 1) * (i + 1) * k0, M.insert(i, i) = m0;
+    return {K, M};
+}
+
+std::string modal_error(const Eigen::SparseMatrix<double>& K, const Eigen::SparseMatrix<double>& M, modal::ModalOptions o) {
+    try {
+        modal::solve_modes(K, M, o);
+    } catch (const std::exception& e) {
+        return e.what();
+    }
+    return "no error";
+}
+
+}  // namespace
+
+TEST(Modal, NumericalFailuresNameTheirCause) {
+    modal::ModalOptions o;
+    o.modes = 1;
+    o.use_cholmod = false;
+    const auto [K, M] = diagonal_problem();
+    // A shift exactly at the eigenvalue 4 (f = 2 / (2 pi)): K - sigma M is singular, and that is
+    // not a rigid-body mode.
+    o.shift_hz = 2.0 / (2 * std::numbers::pi);
+    EXPECT_NE(modal_error(K, M, o).find("is at an eigenvalue of the model"), std::string::npos) << modal_error(K, M, o);
+    o.shift_hz = 1e200;
+    EXPECT_NE(modal_error(K, M, o).find("gives the shift sigma = inf"), std::string::npos);
+    o.shift_hz = 0;
+    const auto [K_inf, M_inf] = diagonal_problem(1e308 * 10);
+    EXPECT_NE(modal_error(K_inf, M_inf, o).find("stiffness matrix holds non-finite entries"), std::string::npos);
+    const auto [K_1, M_tiny] = diagonal_problem(1.0, 1e-310);
+    EXPECT_NE(modal_error(K_1, M_tiny, o).find("the eigenvalues overflow double precision: stiffness diagonal from 1 to 9"),
+              std::string::npos)
+        << modal_error(K_1, M_tiny, o);
+    const modal::Conditioning c(K, M);
+    EXPECT_EQ(c.k_max / c.k_min, 9.0);
+    EXPECT_EQ(c.dof_k_max, 2);
+    EXPECT_TRUE(c.representable());
+}

@@ -74,17 +74,19 @@ TEST(CaseFile, ReadsTheCantileverAndRuns) {
 }
 
 TEST(CaseFile, ReportsBadInput) {
-    expect_error(edit(kCantilever, "removed = 0.7", "removed = 1.2"), "removed must lie in (0, 1)");
-    expect_error(edit(kCantilever, "removed = 0.7", "volume_fraction = 0.0"), "volume_fraction must lie in (0, 1)");
+    expect_error(edit(kCantilever, "removed = 0.7", "removed = 1.2"), "case.toml:14: optimization.removed: must be a finite number in (0, 1), got 1.2");
+    expect_error(edit(kCantilever, "removed = 0.7", "volume_fraction = 0.0"), "optimization.volume_fraction: must be a finite number in (0, 1)");
     expect_error(edit(kCantilever, "at = [0.15, 0.05]", "at = [0.2, 0.05]"), "no node at (0.2, 0.05)");
-    expect_error(edit(kCantilever, "at = [0.15, 0.05]", "box = [0.2, 0.0, 0.3, 0.1]"), "load 1: the selection holds no node");
+    expect_error(edit(kCantilever, "at = [0.15, 0.05]", "box = [0.2, 0.0, 0.3, 0.1]"), "load[0]: the selection holds no node");
     expect_error(edit(kCantilever, "fix = [\"x\", \"y\"]", "fix = [\"x\"]"), "singular");
-    expect_error(edit(kCantilever, "nu = 0.3", "nu = 0.5"), "Poisson");
+    expect_error(edit(kCantilever, "nu = 0.3", "nu = 0.5"), "material.nu: must be a finite number in (-1, 0.5), got 0.5");
     expect_error(edit(kCantilever, "thickness = 0.001", "thickness = 0.001\ncolour = 3"), "unknown key 'colour'");
-    expect_error(edit(kCantilever, "edge = \"x0\"", "edge = \"left\""), "edge 'left'");
-    expect_error(edit(kCantilever, "filter_radius = 0.015", "filter_radius = -1.0"), "filter radius");
-    expect_error(edit(kCantilever, "kind = \"void\"", "kind = \"air\""), "kind must be");
-    expect_error(edit(kCantilever, "force = [0.0, -3000.0]", "force = [0.0, -3000.0]\ncase = 2"), "load case 1 has no load");
+    expect_error(edit(kCantilever, "edge = \"x0\"", "edge = \"left\""), "support[0].edge: 'left' is not x0, x1, y0 or y1");
+    expect_error(edit(kCantilever, "filter_radius = 0.015", "filter_radius = -1.0"), "filter_radius: must be a finite number > 0");
+    expect_error(edit(kCantilever, "kind = \"void\"", "kind = \"air\""), "passive[0].kind: 'air' is not void or solid");
+    expect_error(edit(kCantilever, "force = [0.0, -3000.0]", "force = [0.0, -3000.0]\ncase = 2"), "load case 2 cannot exist");
+    expect_error(edit(kCantilever, "max_iterations = 3", "max_iterations = 2.7"), "max_iterations: must be an integer >= 1, got 2.7");
+    expect_error(edit(kCantilever, "filter_radius = 0.015", "filter_radus = 0.015"), "unknown key 'filter_radus' (did you mean 'filter_radius'?)");
     expect_error("[domain\n", "case.toml:");
     EXPECT_THROW(read_case("/nonexistent/case.toml"), InputError);
 }

@@ -223,3 +223,67 @@ TEST(TopoptShellModel, FoldedPlateCantileverBendsLikeABeam) {
 }
 
 }  // namespace
+
+TEST(TopoptFilter, RefusesARadiusWhoseWeightsCannotFit) {
+    // 500 x 500 centroids and a radius that covers them all: 6e10 weights (2 TB), refused before
+    // anything is allocated; the memory estimate of a normal radius (1.5 spacings) is about 9 neighbours.
+    std::vector<Vec3> c;
+    for (int j = 0; j < 500; ++j)
+        for (int i = 0; i < 500; ++i) c.emplace_back(i, j, 0);
+    const std::vector<double> v(c.size(), 1.0);
+    EXPECT_THROW(Filter(c, v, 2000.0), InputError);
+    EXPECT_NEAR(Filter::estimated_bytes(c, 1.5) / (32.0 * c.size()), 9.0, 0.1);
+}
+
+namespace {
+
+TEST(HeavisideProjection, StepPropertiesAndSlope) {
+    for (double beta : {1.0, 8.0, 64.0}) {
+        const HeavisideProjection H{beta, 0.5};
+        EXPECT_NEAR(H(0.0), 0.0, 1e-14);
+        EXPECT_NEAR(H(1.0), 1.0, 1e-14);
+        EXPECT_NEAR(H(0.5), 0.5, 1e-14);
+        for (double t : {0.1, 0.45, 0.52, 0.9}) {
+            const double h = 1e-6, fd = (H(t + h) - H(t - h)) / (2 * h);
+            EXPECT_NEAR(H.slope(t), fd, 1e-6 * std::max(1.0, std::abs(fd))) << "beta " << beta << " t " << t;
+        }
+    }
+    const HeavisideProjection sharp_step{64.0, 0.5};
+    EXPECT_LT(sharp_step(0.4), 1e-3);  // sharp: grey 0.4 becomes void
+}
+
+TEST(Simp, HeavisideProjectionGivesABlackAndWhiteDesign) {
+    // The MBB half-beam (60 x 20): the density filter alone leaves grey transition layers; with the
+    // projection and continuation to beta = 32 few elements stay grey, at the same volume.
+    const Mesh mesh = rectangle_quads(60, 20, 60, 20, ElementShape::Quad4);
+    Model m = plane_stress_model(mesh, ElasticMaterial::make("unit", 1.0, 0.3, 1.0), 1.0);
+    m.fix(mesh.node_sets.at("x0"), {0}, "symmetry edge");
+    m.fix(nearest_node(mesh, Vec3(60, 0, 0)), 1);
+    m.add_force(0, nearest_node(mesh, Vec3(0, 20, 0)), Vec3(0, -1, 0));
+    Settings s;
+    s.volume_fraction = 0.5;
+    s.filter = FilterKind::Density;
+    s.filter_radius = 1.5;
+    auto grey = [](const Result& r) {
+        int n = 0;
+        for (double v : r.density) n += v > 0.1 && v < 0.9;
+        return double(n) / r.density.size();
+    };
+    const Result plain = optimize(m, s);
+    // Continuation beta = 1, 2, ..., 32 (at most 50 iterations each), then 50 at beta = 32. At high
+    // beta a few boundary elements flip between 0 and 1 from one iteration to the next (the OC
+    // update of a nearly discrete design), so the loop ends on its iteration budget, not on the
+    // 0.01 change criterion.
+    s.projection = Projection::Heaviside;
+    s.max_iterations = 300;
+    const Result sharp = optimize(m, s);
+    EXPECT_EQ(sharp.beta.back(), 32.0);
+    EXPECT_LT(sharp.compliance.back(), plain.compliance.back());  // the crisp design is also stiffer
+    EXPECT_NEAR(sharp.final_volume, 0.5, 1e-9);
+    EXPECT_LT(grey(sharp), 0.5 * grey(plain)) << grey(sharp) << " vs " << grey(plain);
+    EXPECT_LT(grey(sharp), 0.05);
+    s.filter = FilterKind::Sensitivity;
+    EXPECT_THROW(optimize(m, s), InputError);
+}
+
+}  // namespace

@@ -1,0 +1,58 @@
+#pragma once
+// The health of an explicit run (issue 14 item 8): its energy balance error and its hourglass
+// energy as a fraction of its internal energy, judged against the usual limits of explicit codes:
+//   balance error (max |error| over the energy scale of the run, RunSummary) <= 1 %
+//   hourglass energy / internal energy (their largest values over the run)   <= 10 %
+// A study records its explicit runs with Study::record_run(summary.to_json()); finish() judges
+// every recorded run that carries both measures and fails the study for an unhealthy run, unless
+// reference/<study>.toml exempts that run with the reason (reference/README.md):
+//
+//   [[health_exemption]]
+//   run = "Case D"           # the run's name as in runs.json; * and ? match any text (fnmatch), so
+//                            # "table-3-3 *" covers every run of a search
+//   balance = """why this run's balance error may exceed 1 %"""            # either or both
+//   hourglass = """why its hourglass energy may exceed 10 % of internal"""
+//
+// An exemption is part of the reference file's honesty: one that matches no run of the study, or
+// whose runs all meet the limit anyway, fails the study too, so that stale exemptions get removed.
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+namespace fem::check {
+
+inline constexpr double kMaxBalanceError = 0.01;      // of the run's energy scale
+inline constexpr double kMaxHourglassFraction = 0.10; // of the internal energy
+
+struct HealthExemption {
+    std::string run;                 // a run name, or a pattern with * and ?
+    std::string balance, hourglass;  // the reasons; empty: not exempt from that limit
+    int line = 0;                    // in the reference file, for messages
+    bool matches(const std::string& run_name) const;
+};
+
+/// The [[health_exemption]] entries of a reference file (strict: unknown keys, a missing run name or
+/// an exemption without a reason are InputErrors naming the line).
+std::vector<HealthExemption> load_health_exemptions(const std::filesystem::path& reference_file);
+
+/// The verdict on one recorded run.
+struct RunHealth {
+    std::string run;
+    double balance_error = 0, hourglass_fraction = 0;
+    bool balance_ok = true, hourglass_ok = true;
+    std::string balance_exemption, hourglass_exemption;  // the reason, when exempt
+    bool passed() const { return (balance_ok || !balance_exemption.empty()) && (hourglass_ok || !hourglass_exemption.empty()); }
+    nlohmann::json to_json() const;
+    std::string text() const;  // one line for the study's printout
+};
+
+/// Judges every run whose values carry "energy_balance_relative_error" and
+/// "hourglass_fraction_of_internal" (explicit runs); `problems` receives the failures the study must
+/// report: unhealthy runs without exemption, and exemptions that name no run or that are not needed.
+std::vector<RunHealth> judge_run_health(const std::vector<std::pair<std::string, nlohmann::json>>& runs,
+                                        const std::vector<HealthExemption>& exemptions, const std::string& reference_file,
+                                        std::vector<std::string>& problems);
+
+}  // namespace fem::check
