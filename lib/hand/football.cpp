@@ -32,7 +32,7 @@ Scene scene(const Case& c, const Options& o) {
     ball.grid = o.grid;
     ball.half = true;
     ball.material = ElasticMaterial::make("football rubber (Table 4-2)", 6.1e6, 0.49, 275.0);
-    ball.mass = half_mass;  // density from the raw weight (Sec 4.2), not the printed 275 (Sec 10 item 2)
+    if (o.raw_weight) ball.mass = half_mass;  // density from the raw weight (Sec 4.2) instead (Sec 10 item 2)
     ball.initial_velocity = Vec3(-fast, 0, 0);  // riding the pallet (Sec 9 item 6)
     s.objects.push_back(ball);
     Plate pallet;

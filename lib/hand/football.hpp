@@ -39,6 +39,10 @@ struct Options {
     bool finger_pairs = false;     // finger-finger contact pairs (neighbour_pairs())
     double start = 0.0;            // t0: the scene as seen from physical time t0 (model time t - t0)
     EllipsoidGrid grid{};          // 512 elements, 678 nodes (Table 4-2: 512 / 677), inner block 0.4
+    /// false: the football's density is Table 4-2's 275 kg/m^3, the FE model's input (0.30 kg for the
+    /// half mesh); true: the raw weight 0.425 kg over the mesh volume (193 kg/m^3), the first
+    /// session's reconstruction (THESIS_CH4_5 Sec 10 item 2; study README).
+    bool raw_weight = false;
 };
 
 /// The fingers whose sweeps overlap: neighbours on a level, and upper over lower within 22.5 deg.

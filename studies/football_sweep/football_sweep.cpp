@@ -84,8 +84,9 @@ struct PerPair {
 
 constexpr double kSample = 1e-4;   // history / observer interval: 0.1 ms bins (the CFC 60 input)
 constexpr double kRow = 1e-3;      // rows of the written records
-constexpr double kStart = 0.7;     // CTest's start time (s): before any contact (README "Cost")
-constexpr double kLagTime = 0.15;  // steady finger lag: measured this long after the start (time constants 15-25 ms)
+constexpr double kStart = 0.95;    // start of the judged runs (s): 0.11 s before the first contact (README "Cost")
+constexpr double kLagTime = 0.1;   // steady finger lag: measured this long after the start (time constants 15-25 ms), before contact
+constexpr double kWindow = 2.0;    // end of the judged window (s; README "Cost")
 const std::vector<double> kSnapshots = {0.0, 0.9, 1.2, 1.4, 1.6, 1.8, 2.0, 2.2};  // Figs 4-1, 4-5, 4-9
 
 // What one case records (JSON between the processes).
@@ -171,7 +172,7 @@ struct Recorder {
     std::map<std::string, std::vector<int>> surf;  // surface nodes of each finger (finger-finger clearance)
     std::vector<double> bins;                      // football stress maxima per 0.1 ms (the CFC 60 input)
     double bin_s = 0, row_s = 0, row_sf = 0, next_bin = 0, next_row = 0, next_clearance = 0, next_log = 0;
-    double energy_scale = 0, max_balance = 0, t_last = -1;
+    double energy_scale = 0, max_balance = 0, max_internal = 0, max_hourglass = 0, t_last = -1;
     std::size_t snap = 0;
 
     Recorder(const Variant& v_, const RunOptions& o_, const HandModel& hm, int id) : v(v_), o(o_) {
@@ -245,7 +246,11 @@ struct Recorder {
             energy_scale = std::max(energy_scale, scale);
             max_balance = std::max(max_balance, std::abs(h.balance.back()));
             r.balance_window = energy_scale > 0 ? max_balance / energy_scale : 0.0;
-            r.hourglass_window = h.internal.back() > 0 ? h.hourglass.back() / h.internal.back() : 0.0;
+            // Hourglass energy over internal energy, their largest values so far (as the run summary's
+            // EnergySummary::hourglass_fraction: judged where the deformation was, not after release).
+            max_internal = std::max(max_internal, h.internal.back());
+            max_hourglass = std::max(max_hourglass, h.hourglass.back());
+            r.hourglass_window = max_internal > 0 ? max_hourglass / max_internal : 0.0;
         }
     }
 
@@ -261,8 +266,11 @@ struct Recorder {
                 if (q.first < 0) q.first = t;
                 q.last = t;
             }
-            if (p.contact->max_penetration_fraction() > q.max_penetration_fraction)
+            if (p.contact->max_penetration_fraction() > q.max_penetration_fraction) {
+                if (p.contact->max_penetration_fraction() > std::max(0.3, q.max_penetration_fraction + 0.1))
+                    report_deep(hm, p, t);
                 q.max_penetration_fraction = p.contact->max_penetration_fraction(), q.at = t;
+            }
             q.max_penetration = p.contact->max_penetration();
         }
         if (!v.football) return;
@@ -283,6 +291,26 @@ struct Recorder {
             if (q.first < 0) q.first = t;
             q.last = t;
         }
+    }
+
+    // A new deepest penetration of a pair (beyond 0.3 of the element size): which node, on which
+    // side, how deep, so that a jump can be traced (README "Open problems").
+    void report_deep(const HandModel& hm, const HandModel::Pair& p, double t) const {
+        const contact::ContactPoint* deep = nullptr;
+        for (const auto& c : p.contact->contacts())
+            if (!deep || c.gap < deep->gap) deep = &c;
+        if (!deep) return;
+        const auto& m = hm.mesh();
+        auto part_of_node = [&](int n) -> std::string {
+            if (!hm.finger_of_node(n).empty()) return "finger-" + hm.finger_of_node(n);
+            return "object/plate";
+        };
+        fmt::print("  {} case {} t {:.4f}: {} penetration {:.3f} of the element ({:.2f} mm) at node {} ({}, pass {}, "
+                   "x = {:.1f} {:.1f} {:.1f} mm, normal {:.2f} {:.2f} {:.2f}, {} contacts)\n", o.name, r.id, t, p.name,
+                   p.contact->max_penetration_fraction(), 1e3 * p.contact->max_penetration(), deep->node,
+                   part_of_node(deep->node), deep->pass, 1e3 * deep->position.x(), 1e3 * deep->position.y(),
+                   1e3 * deep->position.z(), deep->normal.x(), deep->normal.y(), deep->normal.z(), p.contact->contacts().size());
+        (void)m;
     }
 
     // Every 5 ms: the closest surface nodes of neighbouring fingers.
@@ -334,10 +362,6 @@ struct Recorder {
         r.s_raw_max = *std::max_element(bins.begin(), bins.begin() + nw);
         r.summary = sum.to_json();
         r.summary["name"] = fmt::format("{}-case-{}", o.name, r.id);
-        const double contact_s = sum.timing.contact_search + sum.timing.contact_forces;
-        r.summary["contact_share_of_step_time"] = sum.wall_s > 0 ? contact_s / sum.wall_s : 0.0;
-        r.summary["max_penetration_fraction_of_element"] = max_penetration();
-        r.summary["hourglass_over_internal"] = sum.energy.hourglass_fraction();
         if (!prefix.is_null()) r.summary["restarted_from"] = prefix;
         io::AtomicFile f(o.out / fmt::format("{}-case-{}.json", o.name, r.id));
         f.stream() << to_json(r).dump();
@@ -345,7 +369,7 @@ struct Recorder {
         fmt::print("[ {} case {} ] {} steps{}, dt {:.3g} us, {:.0f} s wall, {:.3g} M element-cycles/s, contact {:.0f} %, "
                    "energy error {:.2g}, max penetration {:.3f} of the element\n",
                    o.name, r.id, sum.steps, prefix.is_null() ? "" : " (after its restart)", 1e6 * sum.min_dt, sum.wall_s,
-                   1e-6 * sum.element_cycles_per_s, 100 * r.summary["contact_share_of_step_time"].get<double>(),
+                   1e-6 * sum.element_cycles_per_s, 100 * r.summary.value("contact_share", 0.0),
                    sum.energy.relative_error(), max_penetration());
         (void)hm;
     }
@@ -358,6 +382,10 @@ ExplicitOptions solver_options(const RunOptions& o, int id) {
     opt.progress = false;
     opt.history_interval = kRow;   // energies for the balance; the observer watches every cycle
     opt.observer_interval = 0.0;
+    // Viscous work booked first-order (ExplicitOptions: ~15 % of a hex8 step saved): bulk viscosity
+    // only, no beta damping; energy/balance-and-hourglass judges the balance that results (with
+    // exact booking the first complete runs had ~1e-7 of the largest energy).
+    opt.exact_viscous_energy = false;
     opt.name = fmt::format("{}-case-{}", o.name, id);
     return opt;
 }
@@ -504,14 +532,16 @@ int main(int argc, char** argv) {
         // Development switches: FOOTBALL_END=<s> caps the simulated time, FOOTBALL_ONLY=<case> runs one
         // case (no checks).
         RunOptions o;
-        o.window = 2.4;  // the judged window (README "Cost"): checks use t <= 2.4 s only
-        // CTest starts at kStart (README "Cost": the fingers spin up undeformed and settle into their
-        // damped steady rotation long before the first contact); --full runs the whole 0..3 s.
-        o.start = std::getenv("FOOTBALL_START") ? std::atof(std::getenv("FOOTBALL_START")) : (study.full() ? 0.0 : kStart);
-        o.end = std::getenv("FOOTBALL_END") ? std::atof(std::getenv("FOOTBALL_END")) : (study.full() ? 3.0 : o.window);
+        o.window = kWindow;  // the judged window (README "Cost"): checks use t <= kWindow only
+        // The judged runs start at kStart (README "Cost": the fingers spin up undeformed and settle
+        // into their damped steady rotation before the first contact), with and without --full;
+        // --full adds Case 4 from t = 0 to 3 s (shown: how much the later start changes).
+        o.start = std::getenv("FOOTBALL_START") ? std::atof(std::getenv("FOOTBALL_START")) : kStart;
+        o.end = std::getenv("FOOTBALL_END") ? std::atof(std::getenv("FOOTBALL_END")) : o.window;
         o.out = out;
         o.cases = kCases;
         if (const char* only = std::getenv("FOOTBALL_ONLY")) o.cases = {kCases.at(std::atoi(only) - 1)};
+        const bool full = study.full() && !std::getenv("FOOTBALL_ONLY");
         // FOOTBALL_REPLOT=1: no runs, the outputs and checks from the run records already in the
         // results folder (e.g. after changing a figure).
         if (!std::getenv("FOOTBALL_REPLOT")) {
@@ -527,6 +557,18 @@ int main(int argc, char** argv) {
                 run(corot, lo);
                 std::fflush(stdout);
                 std::_Exit(0);
+            }
+            if (full) {  // Case 4 from t = 0 to the thesis's 3 s, beside the judged runs
+                std::fflush(stdout);
+                const pid_t full_pid = fork();
+                if (full_pid < 0) throw SolverError("football_sweep: fork() failed");
+                if (full_pid == 0) {
+                    RunOptions fo = o;
+                    fo.start = 0.0, fo.end = 3.0, fo.window = 3.0, fo.name = "full", fo.cases = {kCases[3]};
+                    run(Variant{}, fo);
+                    std::fflush(stdout);
+                    std::_Exit(0);
+                }
             }
             o.dumps = std::filesystem::temp_directory_path() / fmt::format("football_sweep-{}", getpid());
             run(Variant{}, o);
@@ -591,10 +633,12 @@ int main(int argc, char** argv) {
         const auto [u4, t4] = max_y(c4);
         study.check("fig-4-3/case-4/time-of-max-y", t4, fmt::format("maximum {:.2f} mm", u4));
         study.check("fig-4-3/case-4/above-experiment", u4 - 19.4);
+        // Before the first finger touches the football (from the start on).
+        const double first_touch = c4.pairs.count("fingers on football") ? c4.pairs.at("fingers on football").first : -1.0;
         double rel0 = 0;
         int nrel = 0;
         for (std::size_t i = 0; i < rows(c4); ++i)
-            if (c4.t[i] >= 0.2 && c4.t[i] <= 0.6) rel0 += c4.rel_x[i], ++nrel;
+            if (first_touch < 0 || c4.t[i] < first_touch) rel0 += c4.rel_x[i], ++nrel;
         rel0 = 1e3 * rel0 / std::max(1, nrel);
         study.check("fig-4-4/case-4/initial-relative-x", rel0);
         std::size_t kmax = 0;
@@ -606,6 +650,18 @@ int main(int argc, char** argv) {
         study.trend_holds("fig-4-4/case-4/grows-then-shrinks", relmax > rel0 + 2 && relmax - relafter > 2,
                           fmt::format("{:.2f} mm before contact, up to {:.2f} mm at {:.3f} s, then down to {:.2f} mm by {:.2f} s",
                                       rel0, relmax, c4.t[kmax], relafter, c4.window));
+
+        // --- --full: Case 4 from t = 0 to 3 s against the judged run (shown, runs.json and a table) ---
+        if (std::filesystem::exists(out / "full-case-4.json")) {
+            const Record f4 = load(out / "full-case-4.json");
+            study.record_run({"full-case-4 (0-3 s)", f4.summary});
+            write_case(out / "case-4-full.dat", f4);
+            const auto [uf, tf] = max_y(f4);
+            study.write_markdown("full-case-4.md", fmt::format(
+                "| Case 4 | start | max y (mm) | at (s) | max stress CFC 60 (MPa) | raw (MPa) |\n|---|---|---|---|---|---|\n"
+                "| judged run (to {} s) | {} s | {:.2f} | {:.3f} | {:.4f} | {:.4f} |\n| --full (to 3 s) | 0 s | {:.2f} | {:.3f} | {:.4f} | {:.4f} |\n",
+                c4.window, o.start, u4, t4, c4.s_cfc_max / 1e6, c4.s_raw_max / 1e6, uf, tf, f4.s_cfc_max / 1e6, f4.s_raw_max / 1e6));
+        }
 
         // --- Fig 4-10, 4-11: Case 2 ---
         const Record& c2 = res.at(2);
@@ -651,7 +707,7 @@ int main(int argc, char** argv) {
                           fmt::format("largest penetration {:.3f} of the element size (all pairs, all cases, t <= {} s)", pen, o.window),
                           "closest surface nodes of neighbouring fingers (Case 2): " + clear);
         study.trend_holds("energy/balance-and-hourglass", bal < 0.01 && hg < 0.1,
-                          fmt::format("largest balance error {:.2g} of the largest energy, hourglass / internal {:.3f} at {} s", bal, hg, o.window));
+                          fmt::format("largest balance error {:.2g} of the largest energy, hourglass / internal {:.3f} (largest values up to {} s)", bal, hg, o.window));
         study.plot();
     });
 }
