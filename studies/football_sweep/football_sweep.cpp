@@ -87,7 +87,7 @@ constexpr double kRow = 1e-3;      // rows of the written records
 constexpr double kStart = 0.95;    // start of the judged runs (s): 0.11 s before the first contact (README "Cost")
 constexpr double kLagTime = 0.1;   // steady finger lag: measured this long after the start (time constants 15-25 ms), before contact
 constexpr double kWindow = 2.0;    // end of the judged window (s; README "Cost")
-const std::vector<double> kSnapshots = {0.0, 0.9, 1.2, 1.4, 1.6, 1.8, 2.0, 2.2};  // Figs 4-1, 4-5, 4-9
+const std::vector<double> kSnapshots = {0.95, 1.1, 1.3, 1.5, 1.6, 1.7, 1.8, 1.95};  // Figs 4-1, 4-5, 4-9 (8 panels)
 
 // What one case records (JSON between the processes).
 struct Record {
@@ -544,7 +544,13 @@ int main(int argc, char** argv) {
         const bool full = study.full() && !std::getenv("FOOTBALL_ONLY");
         // FOOTBALL_REPLOT=1: no runs, the outputs and checks from the run records already in the
         // results folder (e.g. after changing a figure).
-        if (!std::getenv("FOOTBALL_REPLOT")) {
+        if (std::getenv("FOOTBALL_REPLOT")) {
+            // The results folder is a fresh staging folder (io::RunFolder) inside the published one:
+            // take the last run's records from there.
+            for (const auto& e : std::filesystem::directory_iterator(out.parent_path()))
+                if (e.path().extension() == ".json" && e.path().filename().string().find("-case-") != std::string::npos)
+                    std::filesystem::copy_file(e.path(), out / e.path().filename(), std::filesystem::copy_options::overwrite_existing);
+        } else {
             // The co-rotating damping variant (fingers only, to the lag time) runs beside the cases.
             std::fflush(stdout);
             const pid_t lag_pid = fork();

@@ -19,7 +19,13 @@ set ylabel 'u_y (mm)'
 set object 1 rect from 1.80, graph 0 to 1.85, graph 1 fc rgb '#dddddd' fs solid 0.5 noborder behind
 set arrow 1 from 1.6, 19.4 to 2.05, 19.4 nohead dt 2 lw 2 lc rgb 'black'
 set label 1 'experimental maximum ~19.4 mm (text: simulation 2 mm higher at 1.80-1.85 s)' at 1.0, 19.4 offset 0,1 font 'sans,10'
-plot file(4) using 1:3 with lines lw 2 lc rgb colour(4) title 'simulation, Case 4 (switch at 1.19 s)'
+full = results.'/case-4-full.dat'
+if (system('test -f '.full.' && echo 1') eq '1') {
+  plot file(4) using 1:3 with lines lw 3 lc rgb colour(4) title 'simulation, Case 4 (switch at 1.19 s), judged run from 0.95 s', \
+       full using 1:3 with lines lw 1 lc rgb 'black' title '--full: Case 4 from t = 0 to 3 s'
+} else {
+  plot file(4) using 1:3 with lines lw 2 lc rgb colour(4) title 'simulation, Case 4 (switch at 1.19 s)'
+}
 unset object 1; unset arrow 1; unset label 1
 
 # Fig 4-4: football - pallet relative x.
