@@ -18,7 +18,9 @@ set xlabel 'time (s)'
 set ylabel 'u_y (mm)'
 set object 1 rect from 1.80, graph 0 to 1.85, graph 1 fc rgb '#dddddd' fs solid 0.5 noborder behind
 set arrow 1 from 1.6, 19.4 to 2.05, 19.4 nohead dt 2 lw 2 lc rgb 'black'
-set label 1 'experimental maximum ~19.4 mm (text: simulation 2 mm higher at 1.80-1.85 s)' at 1.0, 19.4 offset 0,1 font 'sans,10'
+set label 1 'experimental maximum about 19.4 mm (text: simulation 2 mm higher at 1.80-1.85 s)' at 1.0, 19.4 offset 0,1 font 'sans,10'
+# The football falls once it has left the pallet (README "Status"): the plot shows the lift.
+set xrange [0.9:2.05]; set yrange [-40:60]; set key left bottom font 'sans,10'
 full = results.'/case-4-full.dat'
 if (system('test -f '.full.' && echo 1') eq '1') {
   plot file(4) using 1:3 with lines lw 3 lc rgb colour(4) title 'simulation, Case 4 (switch at 1.19 s), judged run from 0.95 s', \
@@ -26,7 +28,7 @@ if (system('test -f '.full.' && echo 1') eq '1') {
 } else {
   plot file(4) using 1:3 with lines lw 2 lc rgb colour(4) title 'simulation, Case 4 (switch at 1.19 s)'
 }
-unset object 1; unset arrow 1; unset label 1
+unset object 1; unset arrow 1; unset label 1; set autoscale y; set key default
 
 # Fig 4-4: football - pallet relative x.
 set output figures.'/fig-4-4.'.ext
@@ -40,9 +42,11 @@ set title 'Fig 4-6  Football centre x, Cases 1-5'
 set ylabel 'x (mm)'
 plot for [i in cases] file(i) using 1:2 with lines lw 2 lc rgb colour(int(i)) title 'Case '.i
 set output figures.'/fig-4-7.'.ext
-set title 'Fig 4-7  Football centre y-displacement, Cases 1-5'
+set title 'Fig 4-7  Football centre y-displacement, Cases 1-5 (clipped: it falls after leaving the pallet)'
 set ylabel 'u_y (mm)'
+set yrange [-40:60]
 plot for [i in cases] file(i) using 1:3 with lines lw 2 lc rgb colour(int(i)) title 'Case '.i
+set autoscale y
 set output figures.'/fig-4-8.'.ext
 set title 'Fig 4-8  Maximum equivalent stress in the football (CFC 60; grey: Case 4 unfiltered)'
 set ylabel 'von Mises (MPa)'
@@ -68,7 +72,7 @@ set key default
 if (ext eq 'png') {
   set terminal pngcairo size 1500,820 enhanced font 'sans,10' background rgb 'white'
   snap(c, k) = results.'/snap-case-'.c.'-'.k.'.dat'
-  unset grid
+  unset grid; unset xlabel; unset ylabel
   set view 60, 30, 1.9
   set view equal xyz
   set xyplane 0
@@ -81,8 +85,9 @@ if (ext eq 'png') {
   # x along the conveyor, z (depth) towards the drum, y up: splot x, z, y.
   do for [c in '4 2'] {
     set output figures.'/fig-4-'.(c eq '4' ? '5' : '9').'.png'
+    nsnap = int(system('ls '.results.'/snap-case-'.c.'-*.dat 2>/dev/null | wc -l'))
     set multiplot layout 2,4 title (c eq '4' ? 'Fig 4-5  Case 4 (operating condition)' : 'Fig 4-9  Case 2 (optimal)').'  (mm; football moving in -x, drum turning at 20 rpm)'
-    do for [k=0:7] {
+    do for [k=0:(nsnap < 8 ? nsnap : 8) - 1] {
       set title system(sprintf("sed -n 's/^# t = \\([0-9.]*\\) s.*/t = \\1 s/p' %s", snap(c, k)))
       splot snap(c, k) index 0 using 1:3:2 with polygons fc rgb '#e8b04a', \
             ''         index 1 using 1:3:2 with polygons fc rgb '#8c4a2f', \
