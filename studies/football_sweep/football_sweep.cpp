@@ -530,7 +530,7 @@ int main(int argc, char** argv) {
         par::set_threads(1);  // one thread per process: the cases run as forked processes
         std::signal(SIGUSR1, request_stop_signal);
         // Development switches: FOOTBALL_END=<s> caps the simulated time, FOOTBALL_ONLY=<case> runs one
-        // case (no checks).
+        // case (no checks), FOOTBALL_MIRROR=1 with it: the mirror R_x roll sign.
         RunOptions o;
         o.window = kWindow;  // the judged window (README "Cost"): checks use t <= kWindow only
         // The judged runs start at kStart (README "Cost": the fingers spin up undeformed and settle
@@ -577,7 +577,11 @@ int main(int argc, char** argv) {
                 }
             }
             o.dumps = std::filesystem::temp_directory_path() / fmt::format("football_sweep-{}", getpid());
-            run(Variant{}, o);
+            Variant cases_variant;
+            // FOOTBALL_MIRROR=1 (development, with FOOTBALL_ONLY): the mirror reading of R_x
+            // (HandSpec::roll_sign = -1, README reconstruction 3).
+            if (std::getenv("FOOTBALL_MIRROR") && std::getenv("FOOTBALL_ONLY")) cases_variant.roll_sign = -1.0;
+            run(cases_variant, o);
             wait_children();
             std::filesystem::remove_all(o.dumps);
         }
