@@ -324,7 +324,7 @@ int Study::finish() {
         runs.push_back(std::move(j));
     }
     io::write_text_file(results_dir_ / "runs.json", runs.dump(2) + "\n");
-    output_->commit();
+    if (output_) output_->commit();
 
     std::map<Verdict, int> count;
     std::cout << "\n" << name_ << ": checks against the thesis\n";

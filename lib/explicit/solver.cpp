@@ -326,6 +326,12 @@ nlohmann::json RunSummary::to_json() const {
             {"contact_interfaces", interfaces_json}};
 }
 
+void RunSummary::erase_machine_facts(nlohmann::json& summary) {
+    for (const char* key : {"wall_s", "element_cycles_per_s", "threads", "timing_s", "contact_share"}) summary.erase(key);
+    if (summary.contains("contact_interfaces"))
+        for (auto& c : summary["contact_interfaces"]) c.erase("search_s"), c.erase("forces_s");
+}
+
 // ===================================================================================================
 // ExplicitSolver
 // ===================================================================================================
@@ -1568,7 +1574,7 @@ RunSummary ExplicitSolver::run() {
         // The summary without its timings (wall time, speed, threads: runs.json has them), so that
         // identical runs give byte-identical files whatever the machine's load or thread count.
         nlohmann::json summary = summary_.to_json();
-        for (const char* timing : {"wall_s", "element_cycles_per_s", "threads"}) summary.erase(timing);
+        RunSummary::erase_machine_facts(summary);
         w.attribute("/", "summary", summary.dump());
         w.commit();
     }

@@ -329,6 +329,11 @@ struct RunSummary {
     std::vector<InterfaceSummary> interfaces;
     std::string text() const;
     nlohmann::json to_json() const;
+    /// Removes from a to_json() summary what depends on the machine and its load, not on the model:
+    /// wall time, element-cycles per second, threads, the timing table, the contact share and each
+    /// interface's search and force times. Identical runs give identical results after it (the HDF5
+    /// summary is written this way; tests/determinism compares runs.json with it).
+    static void erase_machine_facts(nlohmann::json& summary);
 };
 
 class ExplicitSolver {
