@@ -307,13 +307,20 @@ double ContactInterface::stability_frequency_squared(std::span<const double> mas
     double w2 = 0.0;
     for (const auto& P : passes_) {
         double inv_master = 0.0;  // 1 / lightest master node (rigid: infinite mass)
-        if (!P->rigid)
+        // The pair's spring is min(k slave node, k master segment): never stiffer than the stiffest
+        // master segment (rigid: infinite).
+        double k_master = std::numeric_limits<double>::infinity();
+        if (!P->rigid) {
             for (int n : P->master_nodes)
                 if (n < static_cast<int>(mass.size()) && mass[n] > 0.0) inv_master = std::max(inv_master, 1.0 / mass[n]);
+            k_master = 0.0;
+            for (const auto& seg : P->master->segments) k_master = std::max(k_master, seg.stiffness);
+        }
         for (std::size_t i = 0; i < P->slave->nodes.size(); ++i) {
             const int n = P->slave->nodes[i];
             if (n >= static_cast<int>(mass.size()) || !(mass[n] > 0.0)) continue;
-            w2 = std::max(w2, opt_.penalty_scale * P->slave->node_stiffness[i] * (1.0 / mass[n] + inv_master));
+            const double k = opt_.penalty_scale * std::min(P->slave->node_stiffness[i], k_master);
+            w2 = std::max(w2, k * (1.0 / mass[n] + inv_master));
         }
     }
     return w2 * static_cast<double>(passes_.size());

@@ -101,10 +101,15 @@ public:
     double max_penetration_fraction() const { return max_penetration_fraction_; }
     /// Wall time spent in the candidate search (CandidateList::update) over all evaluations [s].
     double search_seconds() const { return search_s_; }
+    /// The surfaces: pass 0's slave nodes lie on slave_surface(), its master segments on
+    /// master_surface(); pass 1 (two-way) swaps them.
+    const ContactSurface& slave_surface() const { return *slave_; }
+    const ContactSurface& master_surface() const { return *master_; }
     /// Highest frequency squared [1/s^2] the penalty springs can add to the mesh, for the time step
     /// (Weyl: omega_max^2(elements + contact) <= omega_e^2 + this, so dt <= 2 / sqrt(omega_e^2 +
     /// this)). Bound used: max over every slave node of k (1/m_slave + 1/m_lightest master node of
-    /// the pass), k the largest stiffness the node can get (penalty_scale x its own Eq 2-30 value),
+    /// the pass), k the largest stiffness the node can get (penalty_scale x the smaller of its own
+    /// Eq 2-30 value and the stiffest master segment's),
     /// times the number of passes (two-way: a node is spring-loaded by both passes). Exact for one
     /// node on a rigid face; for a master node loaded by several slave nodes it assumes a master
     /// mesh no finer than the slave's. mass: lumped nodal masses of the model.

@@ -17,7 +17,7 @@ namespace fem::contact {
 struct FrictionLaw {
     double mu_static = 0.0;    // mu_s
     double mu_dynamic = 0.0;   // mu_d
-    double decay = 0.0;        // c_d [s/m] (thesis: presumed 0, then mu = mu_d always)
+    double decay = 0.0;        // c_d [s/m] (thesis: presumed 0, and then Eq 2-35 gives mu = mu_s always)
     /// Eq 2-35.
     double mu(double relative_speed) const;
     bool active() const { return mu_static > 0.0 || mu_dynamic > 0.0; }

@@ -1,6 +1,7 @@
 #include "contact/surface.hpp"
 
 #include <algorithm>
+#include <set>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -182,6 +183,31 @@ ContactSurface ContactSurface::from_part(const Mesh& mesh, std::string_view part
     return surf;
 }
 
+ContactSurface ContactSurface::merge(std::string name, const std::vector<ContactSurface>& parts) {
+    ContactSurface m;
+    m.name = std::move(name);
+    struct NodeData { int node; double stiffness, size, offset; };
+    std::vector<NodeData> nodes;
+    for (const auto& p : parts) {
+        if (p.rigid) throw InputError(fmt::format("contact surface '{}': cannot merge rigid surface '{}'", m.name, p.name));
+        m.segments.insert(m.segments.end(), p.segments.begin(), p.segments.end());
+        for (std::size_t i = 0; i < p.nodes.size(); ++i)
+            nodes.push_back({p.nodes[i], p.node_stiffness[i], p.node_size[i], p.node_offset[i]});
+    }
+    std::sort(nodes.begin(), nodes.end(), [](const NodeData& a, const NodeData& b) { return a.node < b.node; });
+    for (std::size_t i = 0; i < nodes.size(); ++i) {
+        if (i > 0 && nodes[i].node == nodes[i - 1].node)
+            throw InputError(fmt::format("contact surface '{}': node {} belongs to two of the merged parts", m.name,
+                                         nodes[i].node));
+        m.nodes.push_back(nodes[i].node);
+        m.node_stiffness.push_back(nodes[i].stiffness);
+        m.node_size.push_back(nodes[i].size);
+        m.node_offset.push_back(nodes[i].offset);
+    }
+    if (m.segments.empty()) throw InputError(fmt::format("contact surface '{}': nothing to merge", m.name));
+    return m;
+}
+
 ContactSurface ContactSurface::rigid_part(const Mesh& mesh, std::string_view part, double depth) {
     if (!(depth > 0.0)) throw InputError(fmt::format("rigid contact surface '{}': depth {} must be > 0", part, depth));
     // Any material: the stiffness is discarded (a rigid side takes the deformable side's k).
@@ -197,6 +223,31 @@ ContactSurface ContactSurface::rigid_part(const Mesh& mesh, std::string_view par
     s.node_offset.clear();
     s.rigid = true;
     return s;
+}
+
+std::size_t ContactSurface::remove_faces_on(const std::vector<int>& on) {
+    const std::set<int> in(on.begin(), on.end());
+    const std::size_t before = segments.size();
+    std::erase_if(segments, [&](const Segment& s) {
+        for (int a = 0; a < s.count; ++a)
+            if (!in.count(s.n[a])) return false;
+        return true;
+    });
+    std::set<int> used;
+    for (const auto& s : segments)
+        for (int a = 0; a < s.count; ++a) used.insert(s.n[a]);
+    std::size_t k = 0;
+    for (std::size_t i = 0; i < nodes.size(); ++i) {
+        if (!used.count(nodes[i])) continue;
+        nodes[k] = nodes[i], node_stiffness[k] = node_stiffness[i];
+        if (!node_size.empty()) node_size[k] = node_size[i];
+        if (!node_offset.empty()) node_offset[k] = node_offset[i];
+        ++k;
+    }
+    nodes.resize(k), node_stiffness.resize(k);
+    if (!node_size.empty()) node_size.resize(k);
+    if (!node_offset.empty()) node_offset.resize(k);
+    return before - segments.size();
 }
 
 double ContactSurface::mean_segment_size() const {

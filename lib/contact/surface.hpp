@@ -74,7 +74,16 @@ struct ContactSurface {
     /// as a rigid master: infinite stiffness, penetration depth limit `depth` [m] (deeper nodes are
     /// taken to be on the far side; a fraction of the body's thickness), no slave nodes. Throws
     /// InputError for depth <= 0 or a part without surface elements.
+    /// One surface from several deformable parts' surfaces (e.g. every finger of a hand against one
+    /// object: one interface, one search, and one stable-step bound instead of one per finger).
+    /// The parts must not share nodes; throws InputError naming the parts otherwise.
+    static ContactSurface merge(std::string name, const std::vector<ContactSurface>& parts);
     static ContactSurface rigid_part(const Mesh& mesh, std::string_view part, double depth);
+    /// Leaves out the segments whose nodes all belong to `nodes`, and the slave nodes then on no
+    /// segment: e.g. the cut face of a half model on its symmetry plane, where the mirrored half is,
+    /// not a surface. The remaining nodes keep their stiffness and size (taken over all their faces:
+    /// the smaller, safe for the step). Returns the number of segments removed.
+    std::size_t remove_faces_on(const std::vector<int>& nodes);
     /// Smallest / mean segment size (square root of area): for margins and cell sizes.
     double mean_segment_size() const;
 };

@@ -1,0 +1,56 @@
+#pragma once
+// The football sweep of thesis Sec 4.2-4.3 as a hand::Scene: Table 4-3's boundary conditions, the
+// five conveyor cases of Table 4-4, and the inputs the text leaves out (THESIS_CH4_5.md Sec 9,
+// reconstructed; studies/football_sweep/README.md lists each and its effect). The data that a
+// case file will carry for this study (issue 11 item 6); the study and the benchmark build their
+// model from it.
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "core/units.hpp"
+#include "hand/scene.hpp"
+
+namespace fem::hand::football {
+
+inline constexpr double fast = 18.0 * units::inch;   // conveyor speed 0.4572 m/s (Table 4-3)
+inline constexpr double slow = 10.0 * units::inch;   // 0.254 m/s after the switch
+inline constexpr double half_mass = 0.425 / 2;       // raw weight / 2 (half model, Sec 4.2)
+inline constexpr double mu_static = 0.4, mu_dynamic = 0.3;  // Table 4-3
+inline constexpr double pallet_offset = 8.0 * units::mm;    // Fig 4-4: football 8 mm behind the pallet centre
+/// Football centre at t = 0 (Table 4-3) and semi-axes (244/132/132 mm).
+inline const Vec3 centre{685.5 * units::mm, 50.8 * units::mm, 184.0 * units::mm};
+inline const Vec3 semi_axes{122 * units::mm, 66 * units::mm, 66 * units::mm};
+
+/// One row of Table 4-4: 18 in/s, then 10 in/s from t_switch (< 0: constant, Case 1).
+struct Case {
+    int id = 0;
+    double t_switch = -1.0;
+    /// The pallet's speed over model time tau = t - t0 (Curve::steps: the step is exact).
+    Curve schedule(double t0 = 0.0) const;
+};
+std::vector<Case> table_4_4();
+
+struct Options {
+    DampingFrame frame = DampingFrame::absolute;
+    double roll_sign = 1.0;        // R_x sense (HandSpec::roll_sign): the mirror case is -1
+    double decay = 0.0;            // c_d of Eq 2-35 (0: mu = mu_s, the thesis's effective friction)
+    bool football = true;          // false: the hand alone
+    bool finger_pairs = false;     // finger-finger contact pairs (neighbour_pairs())
+    double start = 0.0;            // t0: the scene as seen from physical time t0 (model time t - t0)
+    EllipsoidGrid grid{};          // 512 elements, 678 nodes (Table 4-2: 512 / 677), inner block 0.4
+    /// false: the football's density is Table 4-2's 275 kg/m^3, the FE model's input (0.30 kg for the
+    /// half mesh); true: the raw weight 0.425 kg over the mesh volume (193 kg/m^3), the first
+    /// session's reconstruction (THESIS_CH4_5 Sec 10 item 2; study README).
+    bool raw_weight = false;
+};
+
+/// The fingers whose sweeps overlap: neighbours on a level, and upper over lower within 22.5 deg.
+std::vector<std::pair<std::string, std::string>> neighbour_pairs();
+
+/// The scene of case c. With o.start = t0 > 0 it is the thesis's set-up seen from t0 on: the drum
+/// already turned by omega t0 (fingers undeformed, spinning), the football and pallet moved by
+/// -fast t0, the schedule shifted; valid while nothing has touched before t0.
+Scene scene(const Case& c, const Options& o = {});
+
+}  // namespace fem::hand::football

@@ -1,0 +1,204 @@
+#include "hand/scene.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <set>
+
+#include <fmt/format.h>
+
+#include "contact/explicit_contact.hpp"
+#include "core/error.hpp"
+#include "mesh/finger.hpp"
+#include "mesh/mesh.hpp"
+
+namespace fem::hand {
+
+namespace {
+
+// Co-rotating mass damping (DampingFrame::drum): adds alpha m omega x (x - c) to the finger nodes,
+// so that with the solver's -alpha m v the net damping force is -alpha m (v - v_drum(x)). Its work
+// is booked by the solver with the force providers' ("contact") energy.
+class DrumFrameDamping final : public ForceProvider {
+public:
+    DrumFrameDamping(RigidMotion drum, std::vector<std::pair<int, double>> node_alpha)
+        : drum_(std::move(drum)), node_alpha_(std::move(node_alpha)) {}
+    std::string name() const override { return "co-rotating damping frame"; }
+    void initialize(const NodalState& s) override {
+        mass_.clear();
+        for (const auto& [node, a] : node_alpha_) mass_.push_back(a * s.mass[node]);
+    }
+    void add_forces(double t, const NodalState& s, std::vector<Vec3>& force, std::vector<Vec3>&) override {
+        const RigidPose drum = drum_.pose(t);
+        for (std::size_t k = 0; k < node_alpha_.size(); ++k) {
+            const int i = node_alpha_[k].first;
+            force[i] += mass_[k] * drum.velocity_at(s.x[i]);
+        }
+    }
+
+private:
+    RigidMotion drum_;
+    std::vector<std::pair<int, double>> node_alpha_;
+    std::vector<double> mass_;
+};
+
+}  // namespace
+
+HandModel::HandModel(const Scene& scene) : scene_(scene) {
+    Mesh mesh = hand_mesh(scene_.hand);
+    std::map<std::string, ElasticMaterial> material;
+    for (const auto& f : scene_.hand.fingers) material["finger-" + f.name] = scene_.hand.rubber;
+    std::set<std::string> rigid{"drum"};
+    for (const auto& p : scene_.plates) {
+        if (!rigid.insert(p.part).second || material.count(p.part))
+            throw InputError(fmt::format("hand scene: part name '{}' is used twice", p.part));
+    }
+    for (auto& o : scene_.objects) {
+        if (material.count(o.part) || rigid.count(o.part))
+            throw InputError(fmt::format("hand scene: part name '{}' is used twice", o.part));
+        Mesh m = hex_ellipsoid(o.semi_axes, o.grid, o.half, o.part);
+        m.translate(o.centre);
+        if (o.mass > 0.0) {
+            const double volume = finger::mesh_quality(m).volume;
+            o.material = ElasticMaterial::make(o.material.name, o.material.youngs_modulus, o.material.poissons_ratio,
+                                               o.mass / volume);
+        }
+        std::map<std::string, std::vector<int>> sets;
+        for (auto& [name, set] : m.node_sets) sets[name + "-" + o.part] = set;
+        m.node_sets = std::move(sets);
+        mesh.append(m);
+        material[o.part] = o.material;
+    }
+    for (const auto& p : scene_.plates) mesh.append(parallelogram_quad4(p.centre, p.u, p.v, p.nu, p.nv, p.part));
+    mesh.append(drum_mesh(scene_.hand.drum, scene_.drum_segments));
+    model_ = std::make_unique<ExplicitModel>(std::move(mesh));
+    const Mesh& msh = model_->mesh();
+    for (const auto& [part, mat] : material) {
+        model_->add_hex8(part, mat);
+        std::set<int> nodes;
+        for (int b : msh.blocks_of_part(part))
+            for (int c : msh.blocks[b].connectivity) nodes.insert(c);
+        part_nodes_[part].assign(nodes.begin(), nodes.end());
+        // Lumped masses (volume / 8 per node) for centres of mass.
+        std::map<int, double> lm;
+        double total = 0.0;
+        for (int b : msh.blocks_of_part(part))
+            for (int e = 0; e < msh.blocks[b].size(); ++e) {
+                const auto el = msh.blocks[b].element(e);
+                const double m = mat.density * contact::element_volume(msh.blocks[b].shape, msh.element_coordinates(b, e));
+                for (int node : el) lm[node] += m / el.size();
+                total += m;
+            }
+        for (int node : part_nodes_[part]) lumped_[part].push_back(lm[node]);
+        part_mass_[part] = total;
+    }
+    drum_motion_ = scene_.hand.drum.motion();
+    model_->add_rigid_part("drum", drum_motion_);
+    for (const auto& p : scene_.plates) model_->add_rigid_part(p.part, p.motion());
+    block_finger_.assign(msh.blocks.size(), "");
+    node_finger_.assign(msh.node_count(), "");
+    for (const auto& f : scene_.hand.fingers) {
+        for (int b : msh.blocks_of_part("finger-" + f.name)) block_finger_[b] = f.name;
+        for (int n : part_nodes_["finger-" + f.name]) node_finger_[n] = f.name;
+    }
+    // Fingers: damping, roots tied to the drum, initial velocity.
+    std::vector<std::pair<int, double>> node_alpha;
+    for (const auto& f : scene_.hand.fingers) {
+        const std::string part = "finger-" + f.name;
+        model_->set_mass_damping(part, f.alpha);
+        model_->prescribe_motion(msh.node_set("root-" + f.name), drum_motion_);
+        for (int node : part_nodes_[part]) {
+            if (scene_.fingers_start_spinning) model_->set_initial_velocity({node}, drum_motion_.velocity(msh.nodes[node], 0.0));
+            node_alpha.emplace_back(node, f.alpha);
+        }
+    }
+    if (scene_.damping_frame == DampingFrame::drum)
+        model_->add_force_provider(std::make_unique<DrumFrameDamping>(drum_motion_, std::move(node_alpha)));
+    for (const auto& o : scene_.objects) {
+        if (o.alpha > 0.0) model_->set_mass_damping(o.part, o.alpha);
+        model_->set_initial_velocity(part_nodes_[o.part], o.initial_velocity);
+        if (o.half && scene_.symmetry) model_->add_symmetry_plane(Vec3::UnitZ(), msh.node_set("symmetry-" + o.part));
+    }
+    if (scene_.gravity.norm() > 0.0) model_->set_gravity(scene_.gravity, scene_.gravity_curve);
+    // Contact pairs.
+    auto object_surface = [&](const std::string& part) {
+        auto s = contact::ContactSurface::from_part(msh, part, material.at(part));
+        for (const auto& o : scene_.objects)
+            if (o.part == part && o.half && scene_.symmetry) s.remove_faces_on(msh.node_set("symmetry-" + o.part));
+        return s;
+    };
+    for (const auto& c : scene_.contacts) {
+        const std::string name = c.slave + " on " + c.master;
+        if (!material.count(c.slave) && c.slave != "fingers")
+            throw InputError(fmt::format("hand scene: contact '{}': slave part '{}' is not a deformable part", name, c.slave));
+        auto surface = [&](const std::string& part) {
+            if (part != "fingers") return object_surface(part);
+            std::vector<contact::ContactSurface> each;
+            for (const auto& f : scene_.hand.fingers)
+                each.push_back(contact::ContactSurface::from_part(msh, "finger-" + f.name, scene_.hand.rubber));
+            return contact::ContactSurface::merge("fingers", each);
+        };
+        auto slave = surface(c.slave);
+        contact::ContactOptions opt;
+        opt.friction = c.friction;
+        opt.penalty_scale = c.penalty_scale;
+        Pair p{name, &c, nullptr};
+        if (c.master == "drum") {
+            auto r = contact::ContactSurface::rigid_part(msh, "drum", 0.02);
+            p.contact = &contact::add_contact(*model_, contact::ContactInterface(name, std::move(slave), std::move(r), opt));
+        } else if (auto it = std::find_if(scene_.plates.begin(), scene_.plates.end(), [&](const Plate& q) { return q.part == c.master; });
+                   it != scene_.plates.end()) {
+            auto r = contact::ContactSurface::rigid_part(msh, it->part, it->depth);
+            p.contact = &contact::add_contact(*model_, contact::ContactInterface(name, std::move(slave), std::move(r), opt));
+        } else if (material.count(c.master) || c.master == "fingers") {
+            auto master = surface(c.master);
+            opt.two_way = c.two_way;
+            p.contact = &contact::add_contact(*model_, contact::ContactInterface(name, std::move(slave), std::move(master), opt));
+        } else {
+            throw InputError(fmt::format("hand scene: contact '{}': master part '{}' is neither a part, a plate nor 'drum'",
+                                         name, c.master));
+        }
+        pairs_.push_back(p);
+    }
+}
+
+contact::ContactInterface& HandModel::contact(const std::string& name) const {
+    for (const auto& p : pairs_)
+        if (p.name == name) return *p.contact;
+    throw InputError(fmt::format("hand model: no contact pair '{}'", name));
+}
+
+std::vector<int> HandModel::part_nodes(const std::string& part) const {
+    auto it = part_nodes_.find(part);
+    if (it == part_nodes_.end()) throw InputError(fmt::format("hand model: no deformable part '{}'", part));
+    return it->second;
+}
+
+double HandModel::part_mass(const std::string& part) const {
+    auto it = part_mass_.find(part);
+    if (it == part_mass_.end()) throw InputError(fmt::format("hand model: no deformable part '{}'", part));
+    return it->second;
+}
+
+Vec3 HandModel::centre_of_mass(const std::string& part, std::span<const Vec3> x) const {
+    const auto& nodes = part_nodes_.at(part);
+    const auto& m = lumped_.at(part);
+    Vec3 s = Vec3::Zero();
+    double total = 0.0;
+    for (std::size_t k = 0; k < nodes.size(); ++k) s += m[k] * x[nodes[k]], total += m[k];
+    return s / total;
+}
+
+const std::string& HandModel::finger_of_block(int block) const { return block_finger_.at(block); }
+
+const std::string& HandModel::finger_of_node(int node) const { return node_finger_.at(node); }
+
+int HandModel::tip_node(const std::string& finger) const { return mesh().node_set("tip-centre-" + finger)[0]; }
+
+Vec3 HandModel::plate_centre(const std::string& part, double t) const {
+    for (const auto& p : scene_.plates)
+        if (p.part == part) return p.motion().position(p.centre, t);
+    throw InputError(fmt::format("hand model: no plate '{}'", part));
+}
+
+}  // namespace fem::hand

@@ -1,0 +1,141 @@
+#pragma once
+// A hand scene of thesis Ch 4 as plain data, and the explicit model built from it: the hand (drum +
+// Table 4-1 fingers, hand.hpp), deformable ellipsoidal objects (the football of Sec 4.2, the
+// ellipsoid of Sec 4.4), rigid plates moving with a speed schedule (the conveyor pallet), contact
+// pairs, gravity and the symmetry plane of the half model. Each field is one key of a future case
+// file (issue 11 item 6); nothing of a particular study is hard-wired here.
+//
+//   hand::Scene s;                                   // hand = Table 4-1 on the stepped drum
+//   s.objects.push_back({...football...});
+//   s.plates.push_back({...pallet...});
+//   s.contacts = {{"finger-A", "football", mu}, ..., {"football", "pallet", mu}};
+//   hand::HandModel hm(s);                           // mesh + ExplicitModel + contact interfaces
+//   ExplicitSolver solver(hm.model(), options);
+//
+// Part names: fingers "finger-<name>", objects and plates by their `part`, and "drum" for the drum
+// surface. The drum and the plates are rigid parts of the explicit model (ExplicitModel::
+// add_rigid_part) moved by their RigidMotion, contact masters through ContactSurface::rigid_part;
+// the finger roots follow the drum's motion (ExplicitModel::prescribe_motion).
+#include <map>
+#include <memory>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "contact/contact.hpp"
+#include "explicit/solver.hpp"
+#include "hand/hand.hpp"
+#include "mesh/ellipsoid.hpp"
+
+namespace fem::hand {
+
+/// A deformable ellipsoid (hexahedral O-grid, mesh/ellipsoid.hpp), long axis along x.
+struct EllipsoidObject {
+    std::string part = "object";
+    Vec3 semi_axes = Vec3::Zero();
+    Vec3 centre = Vec3::Zero();
+    EllipsoidGrid grid;
+    bool half = true;            // keep only z <= centre.z (the half model of Sec 4.2; cut plane z = centre.z)
+    ElasticMaterial material;    // density replaced when mass > 0
+    double mass = 0.0;           // > 0: mass of the modelled part [kg], density = mass / mesh volume
+    Vec3 initial_velocity = Vec3::Zero();
+    double alpha = 0.0;          // mass damping [1/s] (thesis: objects undamped)
+};
+
+/// A rigid flat plate translating along `direction` at speed(t) (the conveyor pallet; a schedule
+/// with step changes is Curve::steps). Spanned by the full edge vectors u, v about `centre`
+/// (mesh: parallelogram_quad4, a rigid part); contact pushes towards u x v.
+struct Plate {
+    std::string part = "plate";
+    Vec3 centre = Vec3::Zero();
+    Vec3 u = Vec3::UnitX(), v = -Vec3::UnitZ();
+    int nu = 2, nv = 1;          // segments (Table 4-2's pallet: 2 shells)
+    Vec3 direction = -Vec3::UnitX();
+    Curve speed = Curve::constant(0.0);  // [m/s]
+    double depth = 0.03;         // deepest penetration taken as contact [m]
+    RigidMotion motion() const { return RigidMotion::translation(direction, speed); }
+};
+
+/// A contact pair: the slave part's surface nodes against the master part's faces (two_way: and
+/// back). A rigid master is a plate's part name or "drum". "fingers" stands for every finger of
+/// the hand as one surface (one search and one stable-step bound; forces per finger follow from
+/// the contact points' owning elements, HandModel::finger_of_block).
+struct ContactPair {
+    std::string slave, master;
+    contact::FrictionLaw friction;
+    bool two_way = true;         // deformable pairs only
+    double penalty_scale = 0.1;  // LS-DYNA SLSFAC (contact/contact.hpp)
+};
+
+/// Frame of the fingers' mass damping. LS-DYNA's *DAMPING_PART_MASS damps absolute velocity, so
+/// the drum's rigid rotation is damped too and the fingers trail (the thesis's "cannot spring back
+/// when the drum rotates", Sec 3.5.2): `absolute`. `drum`: damping of the velocity relative to the
+/// drum's rigid rotation (-alpha m (v - omega x r)), the co-rotating variant.
+enum class DampingFrame { absolute, drum };
+
+struct Scene {
+    HandSpec hand;
+    std::vector<EllipsoidObject> objects;
+    std::vector<Plate> plates;
+    std::vector<ContactPair> contacts;
+    Vec3 gravity = Vec3::Zero();
+    Curve gravity_curve;         // gravity x curve(t) (default: on from t = 0)
+    /// Half objects get u_z = 0 on their cut plane (Table 4-3 "ellipsoid symmetric plane DOF UZ = 0"),
+    /// and their cut faces are left out of the contact surface (the mirrored half is there, not a wall).
+    bool symmetry = true;
+    DampingFrame damping_frame = DampingFrame::absolute;
+    /// true: the fingers start with the drum's rigid-rotation velocity (spinning, undeformed);
+    /// false: at rest while their roots start turning (a jolt at t = 0).
+    bool fingers_start_spinning = true;
+    /// Drum surface segments around the circumference (rigid part and contact master "drum").
+    int drum_segments = 48;
+};
+
+/// The built model. Owns the mesh's model; contact interfaces are reachable by pair name
+/// "<slave> on <master>".
+class HandModel {
+public:
+    explicit HandModel(const Scene& scene);
+    ExplicitModel& model() { return *model_; }
+    const Mesh& mesh() const { return model_->mesh(); }
+    const Scene& scene() const { return scene_; }
+
+    struct Pair {
+        std::string name;
+        const ContactPair* spec = nullptr;
+        contact::ContactInterface* contact = nullptr;
+    };
+    const std::vector<Pair>& pairs() const { return pairs_; }
+    contact::ContactInterface& contact(const std::string& name) const;
+
+    /// Nodes of a part (every node of its elements, sorted).
+    std::vector<int> part_nodes(const std::string& part) const;
+    /// Mass of a part (density x mesh volume) [kg].
+    double part_mass(const std::string& part) const;
+    /// Mass-weighted centre of a part's nodes at positions x (lumped masses: element volume / 8).
+    Vec3 centre_of_mass(const std::string& part, std::span<const Vec3> x) const;
+    /// The finger ("A".."E") whose part owns mesh block b; empty when none.
+    const std::string& finger_of_block(int block) const;
+    /// The finger owning node n; empty when none.
+    const std::string& finger_of_node(int node) const;
+    /// Tip-centre node of finger `name`.
+    int tip_node(const std::string& finger) const;
+    /// Where a material point of the drum-fixed frame with reference position X is at time t.
+    Vec3 drum_position(const Vec3& X, double t) const { return drum_motion_.position(X, t); }
+    const RigidMotion& drum_motion() const { return drum_motion_; }
+    /// Current position of a plate's reference centre.
+    Vec3 plate_centre(const std::string& part, double t) const;
+
+private:
+    Scene scene_;
+    std::unique_ptr<ExplicitModel> model_;
+    std::vector<Pair> pairs_;
+    RigidMotion drum_motion_;
+    std::map<std::string, std::vector<double>> lumped_;  // per part: lumped node mass (aligned with part_nodes)
+    std::map<std::string, std::vector<int>> part_nodes_;
+    std::map<std::string, double> part_mass_;
+    std::vector<std::string> block_finger_, node_finger_;
+};
+
+}  // namespace fem::hand

@@ -1,0 +1,183 @@
+// The hand of thesis Ch 4 (lib/hand) and the ellipsoid mesher (lib/mesh/ellipsoid): Table 4-1/4-2
+// counts, the finger placement of the reconstructed frame, the half football's mass and symmetry
+// set, the speed schedule, and a short explicit run of the whole scene.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <set>
+
+#include "core/error.hpp"
+#include "hand/football.hpp"
+#include "hand/scene.hpp"
+#include "mesh/ellipsoid.hpp"
+#include "mesh/finger.hpp"
+
+using namespace fem;
+using namespace fem::hand;
+using units::deg;
+using units::inch;
+using units::mm;
+
+TEST(Ellipsoid, HalfFootballCountsAndVolume) {
+    // Table 4-2: the half football has 512 elements and 677 nodes; our O-grid 512 / 678.
+    const Mesh m = hex_ellipsoid(Vec3(122, 66, 66) * mm, EllipsoidGrid{}, true, "football");
+    EXPECT_EQ(m.element_count(), 512);
+    EXPECT_EQ(m.node_count(), 678);
+    const double exact = 2.0 / 3.0 * std::numbers::pi * 122 * 66 * 66 * 1e-9;  // half ellipsoid
+    const double v = finger::mesh_quality(m).volume;
+    EXPECT_NEAR(v / exact, 1.0, 0.05);   // faceted: a little inside
+    EXPECT_LT(v, exact);
+    EXPECT_GT(finger::mesh_quality(m).min_scaled_jacobian, 0.3);
+    for (int n : m.node_set("symmetry")) EXPECT_EQ(m.nodes[n].z(), 0.0);
+    for (const auto& p : m.nodes) EXPECT_LE(p.z(), 0.0);
+    for (int n : m.node_set("surface")) {
+        const Vec3 p = m.nodes[n].cwiseQuotient(Vec3(122, 66, 66) * mm);
+        EXPECT_NEAR(p.norm(), 1.0, 1e-12);
+    }
+    EXPECT_EQ(m.nodes[m.node_set("centre")[0]].norm(), 0.0);
+}
+
+TEST(Ellipsoid, FullIsClosedAndBadInputNamed) {
+    const Mesh m = hex_ellipsoid(Vec3(97, 57, 66) * mm, EllipsoidGrid{6, 4, 4, 2, 0.5}, false, "ellipsoid");
+    EXPECT_NEAR(finger::mesh_quality(m).volume / (4.0 / 3.0 * std::numbers::pi * 97 * 57 * 66 * 1e-9), 1.0, 0.06);
+    EXPECT_THROW(hex_ellipsoid(Vec3(1, 1, 1), EllipsoidGrid{4, 4, 3, 1, 0.5}, true, "odd"), InputError);
+    EXPECT_THROW(hex_ellipsoid(Vec3(1, -1, 1), EllipsoidGrid{}, true, "neg"), InputError);
+}
+
+TEST(Hand, Table42CountsPerFinger) {
+    const Mesh m = hand_mesh(HandSpec{});
+    int elements = 0;
+    for (const auto& b : m.blocks) {
+        const bool upper = b.part == "finger-A" || b.part == "finger-B";
+        EXPECT_EQ(b.size(), upper ? 725 : 500) << b.part;
+        elements += b.size();
+    }
+    EXPECT_EQ(elements, 2 * 725 + 3 * 500);
+    EXPECT_EQ(m.node_count(), 2 * 1080 + 3 * 756);
+}
+
+TEST(Hand, PlacementFollowsTable41) {
+    const HandSpec h;
+    for (const auto& f : h.fingers) {
+        const Placement p = place_finger(h, f);
+        // Root on the drum at r_drum, h_f; the finger axis pitched by R_z out of the horizontal.
+        EXPECT_NEAR(std::hypot(p.root.x(), p.root.z()), f.drum_radius, 1e-12) << f.name;
+        EXPECT_NEAR(p.root.y(), f.root_height, 1e-12) << f.name;
+        EXPECT_NEAR(std::asin(p.axis().y()), f.pitch, 1e-12) << f.name;
+        // The axis stays in the radial-vertical plane (pitch about the tangential direction).
+        const Vec3 er(std::sin(p.angle), 0, -std::cos(p.angle));
+        EXPECT_NEAR(p.axis().dot(er), std::cos(f.pitch), 1e-12) << f.name;
+        EXPECT_NEAR((p.rotation.transpose() * p.rotation - Mat3::Identity()).norm(), 0.0, 1e-12);
+        EXPECT_NEAR(p.rotation.determinant(), 1.0, 1e-12);
+        // Roll: the major axis (mesh x) makes angle R_x with the vertical plane's y' before the pitch.
+        const Vec3 major = p.rotation.col(0);
+        const Vec3 et(std::cos(p.angle), 0, std::sin(p.angle));
+        EXPECT_NEAR(std::atan2(major.dot(et), std::hypot(major.dot(er), major.y())), f.roll, 1e-9) << f.name;
+    }
+    // Finger D at theta_f = 0 points along -z at t = 0; A (theta_f -11.25 deg) is ahead of it in the
+    // rotation (phi = +11.25 deg, tip towards +x), B behind.
+    const auto rows = table_4_1();
+    EXPECT_NEAR(place_finger(h, rows[3]).axis().z(), -std::cos(10 * deg), 1e-12);
+    EXPECT_GT(place_finger(h, rows[0]).axis().x(), 0.0);
+    EXPECT_LT(place_finger(h, rows[1]).axis().x(), 0.0);
+    // The mirror case flips the roll only.
+    HandSpec mirror;
+    mirror.roll_sign = -1;
+    EXPECT_NEAR((place_finger(mirror, rows[3]).rotation - place_finger(h, rows[3]).rotation).norm(), 0.0, 1e-12);
+    EXPECT_GT((place_finger(mirror, rows[0]).rotation - place_finger(h, rows[0]).rotation).norm(), 0.1);
+}
+
+TEST(Hand, DrumCarriesObjectSideFingersWithTheFlow) {
+    const Drum d = stepped_drum();
+    const auto m = d.motion();
+    // A point on +z moves in -x; one revolution in 3 s (Table 4-3).
+    EXPECT_LT(m.velocity(Vec3(0, 0, 0.1), 0.0).x(), 0.0);
+    const Mat3 R = m.pose(3.0).R;  // one revolution in 3 s: back where it started
+    EXPECT_NEAR((R - Mat3::Identity()).norm(), 0.0, 1e-3);
+    EXPECT_NEAR(std::acos(std::clamp(0.5 * (m.pose(0.75).R.trace() - 1.0), -1.0, 1.0)), 0.5 * std::numbers::pi, 1e-3);
+}
+
+TEST(Hand, PalletFollowsTable44Schedule) {
+    // Case 4: 18 in/s, 10 in/s from 1.19 s; the pallet (a rigid part) is where the schedule's exact
+    // integral puts it.
+    const auto c4 = football::table_4_4()[3];
+    HandModel hm(football::scene(c4));
+    const double x0 = hm.plate_centre("pallet", 0.0).x();
+    EXPECT_NEAR(x0 - hm.plate_centre("pallet", 3.0).x(), football::fast * 1.19 + football::slow * 1.81, 1e-12);
+    // The same scene seen from t0 = 0.7 s: the pallet already moved, the switch at model time 0.49 s.
+    football::Options later;
+    later.start = 0.7;
+    HandModel hl(football::scene(c4, later));
+    EXPECT_NEAR(hl.plate_centre("pallet", 3.0 - 0.7).x(), hm.plate_centre("pallet", 3.0).x(), 1e-12);
+}
+
+TEST(Hand, MergedSurfaceKeepsEveryFingersFacesAndNodes) {
+    const Mesh m = hand_mesh(HandSpec{});
+    const auto rubber = finger::rubber();
+    std::vector<contact::ContactSurface> each;
+    std::size_t segments = 0, nodes = 0;
+    for (const char* f : {"A", "B", "C", "D", "E"}) {
+        each.push_back(contact::ContactSurface::from_part(m, std::string("finger-") + f, rubber));
+        segments += each.back().segments.size(), nodes += each.back().nodes.size();
+    }
+    const auto merged = contact::ContactSurface::merge("fingers", each);
+    EXPECT_EQ(merged.segments.size(), segments);
+    EXPECT_EQ(merged.nodes.size(), nodes);
+    EXPECT_TRUE(std::is_sorted(merged.nodes.begin(), merged.nodes.end()));
+    EXPECT_THROW(contact::ContactSurface::merge("twice", {each[0], each[0]}), InputError);
+}
+
+TEST(Hand, DrumSurfaceFacesOutward) {
+    const Mesh m = drum_mesh(stepped_drum(), 24);
+    const auto r = contact::ContactSurface::rigid_part(m, "drum", 0.01);
+    ASSERT_EQ(r.segments.size(), 48u);
+    for (const auto& s : r.segments) {
+        const auto& x = m.nodes;
+        const Vec3 c = 0.25 * (x[s.n[0]] + x[s.n[1]] + x[s.n[2]] + x[s.n[3]]);
+        const Vec3 n = (x[s.n[1]] - x[s.n[0]]).cross(x[s.n[3]] - x[s.n[0]]);
+        EXPECT_GT(n.dot(Vec3(c.x(), 0, c.z())), 0.0);  // the quad's normal points away from the axis
+    }
+}
+
+TEST(Hand, HalfFootballCutFaceIsNoContactSurface) {
+    // The cut face (z = 184 mm, the symmetry plane) is where the mirrored half is: no wall there.
+    HandModel hm(football::scene(football::table_4_4()[0]));
+    const auto& sym = hm.mesh().node_set("symmetry-football");
+    const std::set<int> on(sym.begin(), sym.end());
+    const auto& ball = hm.contact("fingers on football").master_surface();
+    for (const auto& s : ball.segments) {
+        int n_on = 0;
+        for (int a = 0; a < s.count; ++a) n_on += on.count(s.n[a]);
+        EXPECT_LT(n_on, s.count);
+    }
+    auto full = contact::ContactSurface::from_part(hm.mesh(), "football", hm.scene().objects[0].material);
+    const std::size_t all = full.segments.size();
+    EXPECT_EQ(full.remove_faces_on(sym), all - ball.segments.size());
+    EXPECT_GT(all - ball.segments.size(), 0u);
+    EXPECT_EQ(full.nodes, ball.nodes);
+}
+
+// A scene of the hand alone, spinning at the drum's speed from t = 0: with co-rotating damping the
+// fingers feel no drag and keep the rigid rotation; with absolute damping they start to trail.
+TEST(Hand, CoRotatingDampingDoesNotDragARigidSpin) {
+    auto tip_lag = [](DampingFrame frame) {
+        Scene s;
+        s.hand.fingers = {table_4_1()[3]};  // finger D only
+        s.damping_frame = frame;
+        HandModel hm(s);
+        ExplicitOptions opt;
+        opt.end_time = 2e-3;
+        opt.print_summary = false;
+        opt.progress = false;
+        ExplicitSolver solver(hm.model(), opt);
+        solver.run();
+        const int n = hm.tip_node("D");
+        const Vec3 rigid = hm.drum_position(solver.state().X[n], solver.time());
+        return -(solver.state().x[n] - rigid).dot(hm.drum_motion().velocity_at(rigid, solver.time()).normalized());
+    };
+    const double absolute = tip_lag(DampingFrame::absolute), corotating = tip_lag(DampingFrame::drum);
+    EXPECT_GT(absolute, 1e-5);                     // trails: alpha m v drag
+    EXPECT_LT(std::abs(corotating), 0.05 * absolute);  // only the centrifugal stretch's tangential share
+}
