@@ -92,7 +92,8 @@ HandModel::HandModel(const Scene& scene) : scene_(scene) {
         for (int node : part_nodes_[part]) lumped_[part].push_back(lm[node]);
         part_mass_[part] = total;
     }
-    drum_motion_ = scene_.hand.drum.motion();
+    drum_motion_ = compose(RigidMotion::rotation(scene_.turn.point, scene_.turn.axis, scene_.turn.omega),
+                           scene_.hand.drum.motion());
     model_->add_rigid_part("drum", drum_motion_);
     for (const auto& p : scene_.plates) model_->add_rigid_part(p.part, p.motion());
     block_finger_.assign(msh.blocks.size(), "");
@@ -117,6 +118,9 @@ HandModel::HandModel(const Scene& scene) : scene_(scene) {
     for (const auto& o : scene_.objects) {
         if (o.alpha > 0.0) model_->set_mass_damping(o.part, o.alpha);
         model_->set_initial_velocity(part_nodes_[o.part], o.initial_velocity);
+        for (int d = 0; d < 3; ++d)
+            if (o.carried_velocity[d] != 0.0)
+                model_->prescribe_velocity(part_nodes_[o.part], d, o.carried_velocity[d], o.carried_scale);
         if (o.half && scene_.symmetry) model_->add_symmetry_plane(Vec3::UnitZ(), msh.node_set("symmetry-" + o.part));
     }
     if (scene_.gravity.norm() > 0.0) model_->set_gravity(scene_.gravity, scene_.gravity_curve);

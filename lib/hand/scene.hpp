@@ -41,6 +41,12 @@ struct EllipsoidObject {
     double mass = 0.0;           // > 0: mass of the modelled part [kg], density = mass / mesh volume
     Vec3 initial_velocity = Vec3::Zero();
     double alpha = 0.0;          // mass damping [1/s] (thesis: objects undamped)
+    /// Carried by the conveyor without slip (the "ideal grasping" of Sec 4.4): every node's velocity
+    /// component along each non-zero axis of `carried_velocity` is prescribed as that component x
+    /// carried_scale(t) (ExplicitModel::prescribe_velocity); the other components stay free. Zero:
+    /// free (riding a pallet by contact, as the football).
+    Vec3 carried_velocity = Vec3::Zero();
+    Curve carried_scale;         // default: constant 1
 };
 
 /// A rigid flat plate translating along `direction` at speed(t) (the conveyor pallet; a schedule
@@ -53,7 +59,11 @@ struct Plate {
     int nu = 2, nv = 1;          // segments (Table 4-2's pallet: 2 shells)
     Vec3 direction = -Vec3::UnitX();
     Curve speed = Curve::constant(0.0);  // [m/s]
-    double depth = 0.03;         // deepest penetration taken as contact [m]
+    /// Deepest penetration taken as contact [m]: the plate's thickness. A thin plate, as the thesis's
+    /// shell pallet: 2 mm is ~15x the football's largest pallet penetration in a run (0.14 mm); a
+    /// deeper limit (the first sessions' 30 mm) lets a node falling past the edge, within the edge
+    /// tolerance and below the top, be shot up by the penalty spring (football_sweep README).
+    double depth = 0.002;
     RigidMotion motion() const { return RigidMotion::translation(direction, speed); }
 };
 
@@ -74,8 +84,19 @@ struct ContactPair {
 /// drum's rigid rotation (-alpha m (v - omega x r)), the co-rotating variant.
 enum class DampingFrame { absolute, drum };
 
+/// A rigid rotation of the whole hand (drum and fingers) on top of the drum's spin, about the axis
+/// through `point` along `axis` at omega(t): the flip of Sec 4.4 (135 deg about the global z axis in
+/// 0.5 s, Table 4-6). The hand's motion is compose(turn, drum spin) (explicit/rigid_motion.hpp).
+/// omega zero (the default): no turn.
+struct HandTurn {
+    Vec3 point = Vec3::Zero();
+    Vec3 axis = Vec3::UnitZ();
+    Curve omega = Curve::constant(0.0);
+};
+
 struct Scene {
     HandSpec hand;
+    HandTurn turn;
     std::vector<EllipsoidObject> objects;
     std::vector<Plate> plates;
     std::vector<ContactPair> contacts;
@@ -121,7 +142,8 @@ public:
     const std::string& finger_of_node(int node) const;
     /// Tip-centre node of finger `name`.
     int tip_node(const std::string& finger) const;
-    /// Where a material point of the drum-fixed frame with reference position X is at time t.
+    /// Where a material point of the drum-fixed frame with reference position X is at time t (the
+    /// drum's spin, and the hand's turn when the scene has one).
     Vec3 drum_position(const Vec3& X, double t) const { return drum_motion_.position(X, t); }
     const RigidMotion& drum_motion() const { return drum_motion_; }
     /// Current position of a plate's reference centre.
