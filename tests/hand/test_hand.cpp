@@ -9,6 +9,7 @@
 #include <set>
 
 #include "core/error.hpp"
+#include "hand/ellipsoid.hpp"
 #include "hand/football.hpp"
 #include "hand/scene.hpp"
 #include "mesh/ellipsoid.hpp"
@@ -180,4 +181,37 @@ TEST(Hand, CoRotatingDampingDoesNotDragARigidSpin) {
     const double absolute = tip_lag(DampingFrame::absolute), corotating = tip_lag(DampingFrame::drum);
     EXPECT_GT(absolute, 1e-5);                     // trails: alpha m v drag
     EXPECT_LT(std::abs(corotating), 0.05 * absolute);  // only the centrifugal stretch's tangential share
+}
+
+TEST(Hand, EllipsoidGraspStopsAtHalfTurnAndFlipTurnsTheHand) {
+    // Sec 4.4: the drum stops at 180 deg at 1.5 s; the flip turns the whole hand 135 deg about +z in
+    // 0.5 s from 2 s (compose(turn, spin)); the object is carried to the drum centre by 1.5 s.
+    HandModel hm(ellipsoid::scene());
+    const RigidMotion& m = hm.drum_motion();
+    const Vec3 p(0.1, 0.05, 0.0);
+    const Vec3 half = m.position(p, 1.5);     // spin: pi about -y (a half turn), no flip yet
+    EXPECT_NEAR((half - Vec3(-0.1, 0.05, 0.0)).norm(), 0.0, 1e-9);
+    EXPECT_NEAR((m.position(p, 2.0) - half).norm(), 0.0, 1e-12);  // held between 1.5 and 2 s
+    const double a = ellipsoid::flip_speed * ellipsoid::flip_duration;  // 2.355 rad = 134.9 deg
+    const Vec3 flipped = m.position(p, 2.5);
+    const Vec3 expect(std::cos(a) * half.x() - std::sin(a) * half.y(), std::sin(a) * half.x() + std::cos(a) * half.y(), half.z());
+    EXPECT_NEAR((flipped - expect).norm(), 0.0, 1e-9);
+    EXPECT_NEAR((m.position(p, 3.0) - flipped).norm(), 0.0, 1e-12);  // stopped after 0.5 s
+    EXPECT_NEAR(m.angular_velocity(2.25).z(), ellipsoid::flip_speed, 1e-12);
+    // The object reaches x = 0 when the drum stops: its start is the conveyor's travel in that time.
+    EXPECT_NEAR(ellipsoid::centre().x() - ellipsoid::conveyor * ellipsoid::spin_stop(), 0.0, 1e-15);
+    // The same scene from t0 = 1.0 s: the hand turned by omega t0, motions shifted.
+    ellipsoid::Options later;
+    later.start = 1.0;
+    HandModel hl(ellipsoid::scene(later));
+    const Mat3 R_later = hl.drum_motion().pose(1.0).R;  // model time 1.0 = 2.0 s: turned by omega (1.5 s - 1.0 s)
+    const double turned = std::acos(std::clamp(0.5 * (R_later.trace() - 1.0), -1.0, 1.0));
+    EXPECT_NEAR(turned, ellipsoid::drum_speed * (ellipsoid::spin_stop() - 1.0), 1e-9);
+    EXPECT_NEAR(hl.scene().hand.drum.initial_angle, ellipsoid::drum_speed * 1.0, 1e-15);
+    EXPECT_NEAR(hl.scene().objects[0].centre.x(), ellipsoid::centre().x() - ellipsoid::conveyor * 1.0, 1e-15);
+    // Grasp: the object's x-velocity is prescribed; flip: free.
+    EXPECT_NE(ellipsoid::scene().objects[0].carried_velocity.x(), 0.0);
+    ellipsoid::Options flip;
+    flip.phase = ellipsoid::Phase::flip;
+    EXPECT_EQ(ellipsoid::scene(flip).objects[0].carried_velocity.norm(), 0.0);
 }
