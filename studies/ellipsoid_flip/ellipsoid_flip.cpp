@@ -96,6 +96,12 @@ struct Recorder {
             const int n = hm.tip_node(f);
             tip_y[f].push_back(s.state().x[n].y() - s.state().X[n].y());
         }
+        if (row_t.size() % 50 == 1) {  // progress every 50 ms simulated
+            fmt::print("  t {:.3f} s: object ({:.1f}, {:.1f}) mm, in the hand's frame ({:.1f}, {:.1f}, {:.1f}) mm, tip u_y A {:+.2f} mm, "
+                       "finger stress {:.3f} MPa, dt {:.3g} us, penetration {:.3f}\n", t, 1e3 * c.x(), 1e3 * c.y(), 1e3 * rel.x(),
+                       1e3 * rel.y(), 1e3 * rel.z(), 1e3 * tip_y["A"].back(), 1e-6 * bins["A"].back(), 1e6 * 0.9 * s.critical_dt(), pen);
+            std::fflush(stdout);
+        }
     }
 
     // Judged-window health: deepest penetration (running maximum of every pair), energy balance
