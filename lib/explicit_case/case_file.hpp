@@ -23,10 +23,10 @@
 //   size = [1.0, 0.02, 0.02]
 //   elements = [100, 1, 1]
 //   [[boundary]]
-//   set = "bar.x0"                  # the box's node sets, prefixed with the part's name
+//   set = "x0-bar"                  # the box's node set x0 of part "bar"
 //   fix = ["x", "y", "z"]
 //   [[boundary]]
-//   set = "bar.x1"
+//   set = "x1-bar"
 //   velocity = [1.0, 0.0, 0.0]      # m/s, times an optional curve
 //
 // A case with a [hand] table is a hand scene of thesis Ch 4 (drum + Table 4-1 fingers): it is built

@@ -39,7 +39,7 @@ auto located(const std::string& where, F&& f) {
 }
 
 // The solid blocks of a mesh file as one part `name` (lower-dimensional blocks dropped: their nodes
-// are the solids' nodes); node sets renamed "<name>.<set>".
+// are the solids' nodes); node sets renamed "<set>-<name>" (as HandModel names its parts' sets).
 Mesh as_part(Mesh m, const std::string& name, bool keep_shells = false) {
     Mesh out;
     out.nodes = std::move(m.nodes);
@@ -49,7 +49,7 @@ Mesh as_part(Mesh m, const std::string& name, bool keep_shells = false) {
             out.blocks.push_back(std::move(b));
         }
     if (out.blocks.empty()) throw InputError("the mesh has no " + std::string(keep_shells ? "solid or shell" : "solid") + " elements");
-    for (auto& [set, nodes] : m.node_sets) out.node_sets[name + "." + set] = std::move(nodes);
+    for (auto& [set, nodes] : m.node_sets) out.node_sets[set + "-" + name] = std::move(nodes);  // as HandModel names them
     return out;
 }
 
