@@ -67,6 +67,17 @@ std::array<int, 3> three_counts(const TomlTable& t, std::string_view key) {
     return {n[0], n[1], n[2]};
 }
 
+// The keys of a table depend on its `mesh`: the first key (in file order) outside `keys` is refused,
+// naming the keys that kind takes (a key of another kind is not silently ignored).
+void refuse_keys_outside(const TomlTable& t, const std::vector<std::string>& keys, const std::string& kind) {
+    std::string first;
+    for (const auto& k : t.keys())
+        if (std::find(keys.begin(), keys.end(), k) == keys.end() && (first.empty() || t.where(k).line < t.where(first).line))
+            first = k;
+    if (!first.empty())
+        t.fail(first, fmt::format("is not a key of {}{} (keys: {})", kind, input::did_you_mean(first, keys), input::one_of(keys)));
+}
+
 int line_of(const TomlTable& t) { return t.where().line; }
 
 [[noreturn]] void unknown_name(const TomlTable& t, std::string_view key, const std::string& name, std::string_view what,
@@ -101,10 +112,7 @@ Part read_part(const TomlTable& t, const std::map<std::string, ElasticMaterial>&
     if (p.mesh == "finger") keys.insert(keys.end(), {"table_3_2_case", "table_4_1_finger"});
     if (p.mesh == "ellipsoid") keys.insert(keys.end(), {"semi_axes", "centre", "grid", "inner_scale", "half", "mass"});
     if (p.mesh == "gmsh" || p.mesh == "deck") keys.push_back("file");
-    for (const auto& k : t.keys())
-        if (std::find(keys.begin(), keys.end(), k) == keys.end())
-            t.fail(k, fmt::format("is not a key of a '{}' part{} (keys: {})", p.mesh,
-                                  input::did_you_mean(k, keys), input::one_of(keys)));
+    refuse_keys_outside(t, keys, fmt::format("a '{}' part", p.mesh));
     p.material = material_of(t, materials);
     p.alpha = t.real_or("alpha", 0.0, Range::non_negative());
     p.initial_velocity = vec3_or(t, "initial_velocity", Vec3::Zero());
@@ -153,10 +161,7 @@ RigidPart read_rigid_part(const TomlTable& t, bool hand_case) {
     if (r.mesh == "box") keys.insert(keys.end(), {"size", "origin", "elements"});
     if (r.mesh == "drum") keys.insert(keys.end(), {"centre", "levels", "segments"});
     if (r.mesh == "gmsh") keys.push_back("file");
-    for (const auto& k : t.keys())
-        if (std::find(keys.begin(), keys.end(), k) == keys.end())
-            t.fail(k, fmt::format("is not a key of a '{}' rigid part{} (keys: {})", r.mesh,
-                                  input::did_you_mean(k, keys), input::one_of(keys)));
+    refuse_keys_outside(t, keys, fmt::format("a '{}' rigid part", r.mesh));
     r.depth = t.real_or("depth", 0.03, Range::positive());
     if (r.mesh == "plate") {
         r.centre = vec3(t, "centre");
