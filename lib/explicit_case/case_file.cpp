@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 
 #include "core/error.hpp"
+#include "core/memory.hpp"
 #include "core/units.hpp"
 #include "input/numbers.hpp"
 #include "input/toml_input.hpp"
@@ -78,6 +79,16 @@ void refuse_keys_outside(const TomlTable& t, const std::vector<std::string>& key
         t.fail(first, fmt::format("is not a key of {}{} (keys: {})", kind, input::did_you_mean(first, keys), input::one_of(keys)));
 }
 
+// Refuses a mesh request that cannot fit before anything is allocated (core/memory.hpp): about
+// 2 kB per element for the mesh, the element group and the nodal state.
+void require_room(const TomlTable& t, std::string_view key, double elements, const std::string& what) {
+    try {
+        require_memory(elements * 2048.0, what);
+    } catch (const InputError& e) {
+        t.fail(key, e.what());
+    }
+}
+
 int line_of(const TomlTable& t) { return t.where().line; }
 
 [[noreturn]] void unknown_name(const TomlTable& t, std::string_view key, const std::string& name, std::string_view what,
@@ -125,6 +136,8 @@ Part read_part(const TomlTable& t, const std::map<std::string, ElasticMaterial>&
         p.origin = vec3_or(t, "origin", Vec3::Zero());
         p.elements = three_counts(t, "elements");
         p.element = t.choice_or("element", {"hex8", "tet4", "tet10"}, "hex8");
+        const double n = double(p.elements[0]) * p.elements[1] * p.elements[2] * (p.element == "hex8" ? 1 : 6);
+        require_room(t, "elements", n, fmt::format("a {} x {} x {} {} box", p.elements[0], p.elements[1], p.elements[2], p.element));
     } else if (p.mesh == "finger") {
         if (t.has("table_3_2_case") == t.has("table_4_1_finger"))
             t.fail("give exactly one of table_3_2_case (\"A\"..\"D\") and table_4_1_finger (\"A\"..\"E\")");
@@ -136,6 +149,8 @@ Part read_part(const TomlTable& t, const std::map<std::string, ElasticMaterial>&
         if (t.has("grid")) {
             const auto g = t.integers<int>("grid", 4, {.min = 1, .max = 1000});
             p.grid.nx = g[0], p.grid.ny = g[1], p.grid.nz = g[2], p.grid.layers = g[3];
+            const double n = double(g[0]) * g[1] * g[2] + 2.0 * (double(g[0]) * g[1] + double(g[1]) * g[2] + double(g[0]) * g[2]) * g[3];
+            require_room(t, "grid", n, fmt::format("an ellipsoid grid [{}, {}, {}, {}]", g[0], g[1], g[2], g[3]));
         }
         // The inner block's corners must stay inside the ellipsoid (s sqrt(3) < 1).
         p.grid.inner_scale = t.real_or("inner_scale", p.grid.inner_scale, Range::open(0.0, 0.57));
@@ -171,10 +186,13 @@ RigidPart read_rigid_part(const TomlTable& t, bool hand_case) {
             t.fail("v", "u and v must span a plane (not parallel, not zero)");
         const auto s = t.integers<int>("segments", 2, {.min = 1, .max = 100000});
         r.segments = {s[0], s[1]};
+        require_room(t, "segments", double(s[0]) * s[1], fmt::format("a {} x {} plate", s[0], s[1]));
     } else if (r.mesh == "box") {
         r.size = vec3(t, "size", Range::positive());
         r.origin = vec3_or(t, "origin", Vec3::Zero());
         r.elements = three_counts(t, "elements");
+        require_room(t, "elements", double(r.elements[0]) * r.elements[1] * r.elements[2],
+                     fmt::format("a {} x {} x {} box", r.elements[0], r.elements[1], r.elements[2]));
     } else if (r.mesh == "drum") {
         r.centre = vec3_or(t, "centre", Vec3::Zero());
         for (const auto& row : t.matrix("levels", 3)) {
