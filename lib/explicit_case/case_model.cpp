@@ -306,6 +306,12 @@ void write_histories(const std::filesystem::path& dir, const History& h) {
         .add("contact_J", h.contact)
         .add("balance_error_J", h.balance);
     io::write_dat(dir / "energies.dat", e);
+    if (!h.max_von_mises.empty()) {  // element histories: the largest von Mises stress of each part
+        io::Table vm;
+        vm.add("time_s", h.time);
+        for (const auto& [part, values] : h.max_von_mises) vm.add(part + "_max_von_mises_Pa", values);
+        io::write_dat(dir / "von_mises.dat", vm);
+    }
 }
 
 }  // namespace
@@ -343,7 +349,7 @@ std::string run_case(const ExplicitCase& c, bool quiet) {
         }
         io::write_text_file(dir / "run.json", j.dump(2) + "\n");
     }
-    text += "results: " + c.output.folder.string() + "/{summary.txt, run.json, histories.dat, energies.dat" +
+    text += "results: " + c.output.folder.string() + "/{summary.txt, run.json, histories.dat, energies.dat, von_mises.dat" +
             (c.output.h5 ? ", histories.h5" : "") + (c.output.vtu_interval > 0 ? ", results.pvd" : "") + "}\n";
     io::write_text_file(dir / "summary.txt", text);
     out.commit();
