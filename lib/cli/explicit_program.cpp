@@ -10,39 +10,26 @@
 #include <iostream>
 #include <string>
 
+#include "cli/case_command_line.hpp"
 #include "cli/programs.hpp"
 #include "core/error.hpp"
 #include "core/program.hpp"
 #include "core/progress.hpp"
 #include "explicit_case/case_file.hpp"
-#include "input/arguments.hpp"
 
 namespace fem::cli {
 
 int explicit_program(int argc, char** argv) {
     return fem::run_program("fem-explicit", [&]() {
-        std::string case_path, output;
-        bool quiet = false;
-        fem::input::Arguments args(argc, argv, {"--help", "--output", "--quiet"});
-        while (args.next()) {
-            if (args.is("--help") || args.is("-h")) {
-                std::cout << "usage: fem-explicit CASE.toml [--output DIR] [--quiet]\n"
-                             "Explicit dynamics (central differences, penalty contact, rigid parts) of a TOML case\n"
-                             "file; every key: lib/explicit_case/CASE_FILE.md. Writes summary.txt, run.json,\n"
-                             "histories.h5, histories.dat, energies.dat (and VTU/PVD, restart dumps) to DIR.\n";
-                return 0;
-            } else if (args.is("--output")) {
-                output = args.value();
-            } else if (args.is("--quiet")) {
-                quiet = true;
-            } else {
-                args.positional(case_path);
-            }
-        }
-        if (case_path.empty()) throw fem::InputError("no case file given (usage: fem-explicit CASE.toml [--output DIR])");
-        auto c = fem::explicit_case::read_case(case_path);
-        if (!output.empty()) c.output.folder = output;
-        std::cout << fem::explicit_case::run_case(c, quiet) << std::flush;
+        const auto line = read_case_command_line(
+            argc, argv, "fem-explicit CASE.toml [--output DIR] [--quiet]",
+            "Explicit dynamics (central differences, penalty contact, rigid parts) of a TOML case\n"
+            "file; every key: lib/explicit_case/CASE_FILE.md. Writes summary.txt, run.json,\n"
+            "histories.h5, histories.dat, energies.dat (and VTU/PVD, restart dumps) to DIR.\n");
+        if (!line) return 0;  // --help
+        auto c = fem::explicit_case::read_case(line->case_path);
+        if (!line->output.empty()) c.output.folder = line->output;
+        std::cout << fem::explicit_case::run_case(c, line->quiet) << std::flush;
         return 0;
     });
 }
