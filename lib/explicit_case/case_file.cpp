@@ -89,6 +89,19 @@ void require_room(const TomlTable& t, std::string_view key, double elements, con
     }
 }
 
+// A stepped drum's `levels` = [[y_bottom, y_top, radius], ...] (hand::DrumLevel).
+std::vector<hand::DrumLevel> drum_levels(const TomlTable& t) {
+    std::vector<hand::DrumLevel> levels;
+    for (const auto& row : t.matrix("levels", 3)) {
+        if (!(row[1] > row[0]) || !(row[2] > 0))
+            t.fail("levels", fmt::format("each level is [y_bottom, y_top, radius] with y_top > y_bottom and radius > 0, got "
+                                         "[{}, {}, {}]",
+                                         row[0], row[1], row[2]));
+        levels.push_back({row[0], row[1], row[2]});
+    }
+    return levels;
+}
+
 int line_of(const TomlTable& t) { return t.where().line; }
 
 [[noreturn]] void unknown_name(const TomlTable& t, std::string_view key, const std::string& name, std::string_view what,
@@ -195,13 +208,7 @@ RigidPart read_rigid_part(const TomlTable& t, bool hand_case) {
                      fmt::format("a {} x {} x {} box", r.elements[0], r.elements[1], r.elements[2]));
     } else if (r.mesh == "drum") {
         r.centre = vec3_or(t, "centre", Vec3::Zero());
-        for (const auto& row : t.matrix("levels", 3)) {
-            if (!(row[1] > row[0]) || !(row[2] > 0))
-                t.fail("levels", fmt::format("each level is [y_bottom, y_top, radius] with y_top > y_bottom and radius > 0, "
-                                             "got [{}, {}, {}]",
-                                             row[0], row[1], row[2]));
-            r.levels.push_back({row[0], row[1], row[2]});
-        }
+        r.levels = drum_levels(t);
         r.drum_segments = t.integer_or<int>("segments", 48, {.min = 3, .max = 100000});
     } else {
         r.file = t.path("file");
@@ -283,14 +290,7 @@ Hand read_hand(const TomlTable& t, const std::map<std::string, ElasticMaterial>&
         d->allow({"centre", "levels", "omega", "omega_curve", "omega_steps", "initial_angle_deg", "segments"});
         s.drum.centre = vec3_or(*d, "centre", Vec3::Zero());
         if (d->has("levels")) {
-            s.drum.levels.clear();
-            for (const auto& row : d->matrix("levels", 3)) {
-                if (!(row[1] > row[0]) || !(row[2] > 0))
-                    d->fail("levels", fmt::format("each level is [y_bottom, y_top, radius] with y_top > y_bottom and radius "
-                                                  "> 0, got [{}, {}, {}]",
-                                                  row[0], row[1], row[2]));
-                s.drum.levels.push_back({row[0], row[1], row[2]});
-            }
+            s.drum.levels = drum_levels(*d);
         }
         s.drum.omega = curve(*d, "omega", s.drum.omega);
         s.drum.initial_angle = d->real_or("initial_angle_deg", 0.0) * units::deg;
