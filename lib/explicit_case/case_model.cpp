@@ -174,12 +174,20 @@ CaseModel::CaseModel(const ExplicitCase& c) {
                 nodes.insert(msh.blocks[b].connectivity.begin(), msh.blocks[b].connectivity.end());
             }
             part_nodes[p.name].assign(nodes.begin(), nodes.end());
+            ElasticMaterial material = p.material;
+            if (p.mass > 0.0) {  // the density that gives the part this mass on its mesh (as HandModel does)
+                double volume = 0.0;
+                for (int b : msh.blocks_of_part(p.name))
+                    for (int e = 0; e < msh.blocks[b].size(); ++e)
+                        volume += contact::element_volume(msh.blocks[b].shape, msh.element_coordinates(b, e));
+                material = ElasticMaterial::make(material.name, material.youngs_modulus, material.poissons_ratio, p.mass / volume);
+            }
             if (shapes == std::set{ElementShape::Hex8}) {
                 Hex8Options o;
                 o.hourglass_qm = p.hourglass_qm;
-                model.add_hex8(p.name, p.material, o);
+                model.add_hex8(p.name, material, o);
             } else if (std::all_of(shapes.begin(), shapes.end(), [](ElementShape s) { return s == ElementShape::Tet4 || s == ElementShape::Tet10; })) {
-                add_tets(model, p.name, p.material);
+                add_tets(model, p.name, material);
             } else {
                 std::string names;
                 for (ElementShape s : shapes) names += (names.empty() ? "" : ", ") + std::string(to_string(s));

@@ -294,6 +294,29 @@ g = [0.0, -9.81, 0.0]
     }
 }
 
+// An ellipsoid part given its mass: the density is the mass over the mesh volume.
+TEST(ExplicitCase, EllipsoidPartWithAGivenMass) {
+    const std::string text = R"(
+[control]
+end_time = 1.0e-6
+threads = 1
+[[material]]
+name = "rubber"
+E = 6.1e6
+nu = 0.49
+rho = 1000.0
+[[part]]
+name = "ball"
+material = "rubber"
+mesh = "ellipsoid"
+semi_axes = [0.05, 0.03, 0.03]
+grid = [4, 4, 2, 2]
+mass = 0.125
+)";
+    CaseRun r(parse_case(text, "ball.toml"), scratch("ball"));
+    EXPECT_NEAR(r.summary.mass, 0.125, 1e-12);
+}
+
 TEST(ExplicitCase, ReaderRefusesWithFileLineAndKey) {
     auto refused = [](const std::string& text) {
         try {
