@@ -385,6 +385,8 @@ ExplicitCase from_document(const input::TomlDocument& doc) {
         for (const TomlTable& n : out->tables("node")) {
             n.allow({"name", "set"});
             HistoryNode h{n.string("name"), n.string("set")};
+            if (h.name.empty() || h.name.find_first_of(" \t\n") != std::string::npos)
+                n.fail("name", fmt::format("must be one word (it heads columns of histories.dat), got '{}'", h.name));
             if (!names.insert(h.name).second) n.fail("name", "'" + h.name + "' is used twice");
             c.output.nodes.push_back(h);
         }
