@@ -136,9 +136,10 @@ TEST_P(BadInput, EndsAsExpected) {
     const int status = run(c.program, args, printed);
     EXPECT_EQ(status, c.exit) << c.name << " printed:\n" << printed;
     for (const auto& m : c.messages) EXPECT_NE(printed.find(m), std::string::npos) << c.name << ": expected '" << m << "' in:\n" << printed;
-    if (status != 0 && fs::exists(out))
+    if (status != 0 && fs::exists(out)) {
         for (const auto& entry : fs::recursive_directory_iterator(out))
             EXPECT_FALSE(entry.is_regular_file()) << c.name << " was refused but wrote " << entry.path();
+    }
     if (!::testing::Test::HasFailure()) fs::remove_all(work);
 }
 
