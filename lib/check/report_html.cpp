@@ -81,7 +81,7 @@ button.badge.pass{background:#dcf3dc}button.badge.fail{background:#f9c9c9}button
 button.badge.shown{background:#e3e6f7}button.badge.disc{background:#eadcf7}
 button.active{outline:3px solid #2f6fde}
 .filters{position:sticky;top:0;z-index:5;background:#fff;border:1px solid #d3d8e2;border-radius:8px;padding:6px 10px;margin:10px 0;display:flex;flex-wrap:wrap;gap:8px;align-items:center;font-size:13px;box-shadow:0 2px 6px rgba(0,0,0,.06)}
-.filters select{font:inherit;max-width:15em}
+.filters select{font:inherit;max-width:11em}
 #filter-status{margin-left:auto;font-weight:600}
 .scroll{overflow-x:auto;max-width:100%;margin:10px 0;border:1px solid #d3d8e2;border-radius:6px;background:#fff}
 table{border-collapse:collapse;font-size:13px}
@@ -148,10 +148,11 @@ box.addEventListener('click',()=>{box.hidden=true;});
 document.addEventListener('keydown',ev=>{if(ev.key==='Escape')box.hidden=true;});
 if(location.hash.startsWith('#filter='))apply(parse(location.hash.slice(8)));else apply({});
 
-// #selftest: what a test cannot see from outside the browser, written into <pre id="selftest">.
-async function selftest(){
+// #selftest: what a test cannot see from outside the browser, written into <pre id="selftest"> once
+// the page and its images have loaded (synchronously: headless Chromium dumps the DOM right after).
+function selftest(){
   const out={images:0,broken_images:[],anchors:0,broken_anchors:[],files:[],filters:[],lightbox:{},plots:document.querySelectorAll('svg.plot').length,plot_points:document.querySelectorAll('svg.plot circle.point').length,checks:rows.length};
-  for(const img of document.images){if(img.closest('#lightbox'))continue;out.images++;try{await img.decode();}catch(e){}if(!(img.complete&&img.naturalWidth>0))out.broken_images.push(img.getAttribute('src'));}
+  for(const img of document.images){if(img.closest('#lightbox'))continue;out.images++;if(!(img.complete&&img.naturalWidth>0))out.broken_images.push(img.getAttribute('src'));}
   document.querySelectorAll('a[href]').forEach(a=>{const h=a.getAttribute('href');if(h.startsWith('#')){out.anchors++;if(!document.getElementById(decodeURIComponent(h.slice(1))))out.broken_anchors.push(h);}else out.files.push(h);});
   document.querySelectorAll('img[src]').forEach(i=>out.files.push(i.getAttribute('src')));
   const shown=()=>rows.filter(r=>r.getClientRects().length>0);
@@ -163,11 +164,14 @@ async function selftest(){
   set({verdict:'',kind:'',basis:'',disc:''});
   out.after_reset=shown().length;
   const a=document.querySelector('a.thumb');
-  if(a){a.click();out.lightbox.opened=getComputedStyle(box).display!=='none';try{await boxImg.decode();}catch(e){}
-    out.lightbox.loaded=boxImg.naturalWidth>0;out.lightbox.src=boxImg.getAttribute('src');box.click();out.lightbox.closed=box.hidden;}
+  if(a){a.click();out.lightbox.opened=getComputedStyle(box).display!=='none';out.lightbox.src=boxImg.getAttribute('src');
+    out.lightbox.thumb=a.getAttribute('href');box.click();out.lightbox.closed=getComputedStyle(box).display==='none';}
   document.getElementById('selftest').textContent=JSON.stringify(out);
 }
-if(location.hash==='#selftest')(document.readyState==='complete'?selftest():addEventListener('load',selftest));
+// "#selftest;filter=..." leaves the page filtered afterwards (for a screenshot taken in the same run).
+function run(){try{const then=location.hash.split(';filter=')[1];selftest();if(then)set(parse(then.replace(/,/g,';')));}
+  catch(e){document.getElementById('selftest').textContent=JSON.stringify({error:String(e&&e.stack||e)});}}
+if(location.hash.startsWith('#selftest'))(document.readyState==='complete'?run():addEventListener('load',run));
 })();
 )js";
 
@@ -411,7 +415,7 @@ std::string to_html(const std::vector<Block>& doc) {
                 h << "<div class=\"badges\"><span class=\"lead\">" << esc(b.text) << "</span>";
                 for (const auto& badge : b.badges)
                     h << "<button class=\"badge " << esc(badge.css) << "\" data-filter=\"" << esc(badge.filter)
-                      << "\" data-count=\"" << badge.count << "\">" << esc(badge.label) << "<b>" << badge.count << "</b></button>";
+                      << "\" data-count=\"" << badge.count << "\">" << esc(badge.label) << " <b>" << badge.count << "</b></button>";
                 h << "</div>\n";
                 break;
         }
