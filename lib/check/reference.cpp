@@ -72,7 +72,7 @@ std::string optional_string(const toml::table& t, const char* key) {
 }
 
 // curve = { file = "fig-3-41.dat", x = "t_ms", y = "twist_deg", at = 5.7 (or one per series member),
-//           x_label = "time (ms)" }
+//           x_label = "time (ms)", y_label = "twist (deg)" }
 void parse_curve(const toml::table& t, const std::filesystem::path& path, ReferenceEntry& e) {
     const toml::table* c = t["curve"].as_table();
     auto bad = [&](const std::string& what) {
@@ -88,6 +88,7 @@ void parse_curve(const toml::table& t, const std::filesystem::path& path, Refere
         *field = *v;
     }
     ref.x_label = (*c)["x_label"].value<std::string>().value_or("");
+    ref.y_label = (*c)["y_label"].value<std::string>().value_or("");
     const std::filesystem::path file(ref.file);
     if (file.is_absolute() || file.filename() != file) bad("file '" + ref.file + "' must be a file name in the study's results folder");
     if (e.is_trend()) bad("is for a numeric thesis value, not a trend");

@@ -50,7 +50,7 @@ struct HistoryEntry {
 struct CurveRef {
     std::string file;     // "fig-3-41.dat"
     std::string x, y;     // column names: "t_ms", "loading_line_deg"
-    std::string x_label;  // axis label; the column name when empty
+    std::string x_label, y_label;  // axis titles; the column names when empty
 };
 
 /// Where a thesis value lies on one of our curves: the report draws the curve and marks the

@@ -398,10 +398,10 @@ int write_report(const ReportInputs& in) {
         for (const auto& [key, points] : curves) {
             const CurveRef& ref = points.front()->on_curve->curve;
             Block plot{Block::Plot};
-            plot.plot.title = ref.file + ": " + ref.y + " over " + ref.x;
-            plot.plot.x_label = ref.x_label.empty() ? ref.x : ref.x_label;
             const CheckRecord& first = *points.front();
-            plot.plot.y_label = first.quantity + (first.unit.empty() ? "" : " (" + first.unit + ")");
+            plot.plot.title = first.quantity + " (" + ref.file + ": " + ref.y + " over " + ref.x + ")";
+            plot.plot.x_label = ref.x_label.empty() ? ref.x : ref.x_label;
+            plot.plot.y_label = !ref.y_label.empty() ? ref.y_label : ref.y + (first.unit.empty() ? "" : " (" + first.unit + ")");
             try {
                 const auto path = in.results_dir / study / ref.file;
                 const io::Table data = io::read_dat(path);

@@ -31,6 +31,23 @@ std::string esc(const std::string& s) {
     return out;
 }
 
+// A paragraph's text with its Markdown `code` spans as <code>.
+std::string inline_html(const std::string& s) {
+    std::string out;
+    bool code = false;
+    const std::string escaped = esc(s);
+    const bool paired = std::count(s.begin(), s.end(), '`') % 2 == 0;
+    for (char c : escaped) {
+        if (c == '`' && paired) {
+            out += code ? "</code>" : "<code>";
+            code = !code;
+        } else {
+            out += c;
+        }
+    }
+    return out;
+}
+
 std::string slug(const std::string& s) {
     std::string out;
     for (char c : s) {
@@ -105,6 +122,7 @@ svg .pass{fill:#2e9d44}svg .fail{fill:#d33}svg .miss{fill:#f29a1d}svg .shown{fil
 #lightbox img{max-width:96vw;max-height:88vh;background:#fff}
 #lightbox div{color:#fff;margin-top:8px}
 #selftest{display:none}
+code{background:#e9ecf2;border-radius:3px;padding:0 3px;font-size:90%}
 @media (max-width:900px){
  #nav{position:static;width:auto;max-height:38vh;padding-bottom:12px}
  main{margin-left:0;padding:0 10px 40px}
@@ -398,7 +416,7 @@ std::string to_html(const std::vector<Block>& doc) {
                 open = b.level;
                 break;
             }
-            case Block::Paragraph: h << "<p>" << esc(b.text) << "</p>\n"; break;
+            case Block::Paragraph: h << "<p>" << inline_html(b.text) << "</p>\n"; break;
             case Block::Table: write_table(h, b); break;
             case Block::Image:
                 if (!in_gallery) h << "<div class=\"gallery\">\n";

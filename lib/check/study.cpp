@@ -58,7 +58,7 @@ nlohmann::json CheckRecord::to_json() const {
     }
     if (on_curve)
         j["curve"] = {{"file", on_curve->curve.file}, {"x", on_curve->curve.x}, {"y", on_curve->curve.y},
-                      {"x_label", on_curve->curve.x_label}, {"at", on_curve->at}};
+                      {"x_label", on_curve->curve.x_label}, {"y_label", on_curve->curve.y_label}, {"at", on_curve->at}};
     return j;
 }
 
@@ -93,7 +93,8 @@ CheckRecord CheckRecord::from_json(const nlohmann::json& j) {
             r.history.push_back({e.value("date", ""), e.value("change", ""), e.value("was", ""), e.value("why", "")});
     if (j.contains("curve") && j["curve"].is_object()) {
         const auto& c = j["curve"];
-        r.on_curve = CurvePoint{{c.value("file", ""), c.value("x", ""), c.value("y", ""), c.value("x_label", "")}, c.value("at", 0.0)};
+        r.on_curve = CurvePoint{{c.value("file", ""), c.value("x", ""), c.value("y", ""), c.value("x_label", ""), c.value("y_label", "")},
+                                c.value("at", 0.0)};
     }
     return r;
 }

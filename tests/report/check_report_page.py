@@ -109,20 +109,20 @@ def png(path, w=120, h=80):
 
 
 REFERENCE = {
-    "demo_verdicts": '''study = "demo_verdicts"
+    "demo_a_verdicts": '''study = "demo_a_verdicts"
 title = "Fixture study with every verdict"
 section = "Sec 9.1"
 [figures]
 "Fig 9-1" = ["fig-9-1.png", "fig-9-1.svg"]
 "Table 9-2" = ["table-9-2.md"]
 ''',
-    "demo_figure": '''study = "demo_figure"
+    "demo_b_figure": '''study = "demo_b_figure"
 title = "Fixture study with a figure only"
 section = "Sec 9.2"
 [figures]
 "Fig 9-9" = ["fig-9-9.png"]
 ''',
-    "demo_not_run": '''study = "demo_not_run"
+    "demo_c_not_run": '''study = "demo_c_not_run"
 title = "Fixture study not run"
 section = "Sec 9.3"
 ''',
@@ -144,7 +144,7 @@ def record(id, source, kind, basis, thesis, ours, passed, tol=None, known_miss=N
 
 CURVE = {"file": "fig-9-1.dat", "x": "t_ms", "y": "twist_deg", "x_label": "time (ms)"}
 CHECKS = {
-    "demo_verdicts": [
+    "demo_a_verdicts": [
         record("fig-9-1/peak", "Fig 9-1", "reproduction", "model", 25.5, 29.4, False, {"rel": 0.15},
                known_miss="the loads dent single nodes", curve=dict(CURVE, at=5.7), unit="deg"),
         record("fig-9-1/start", "Fig 9-1", "reproduction", "model", 2.0, 2.04, True, {"rel": 0.1}, curve=dict(CURVE, at=1.0),
@@ -157,7 +157,7 @@ CHECKS = {
         record("table-9-2/experiment", "Table 9-2", "shown", "experiment", 25.0, 14.8, None),
         record("eq-9-1/fit", "Eq 9-1", "consistency", "reconstructed", 3.0, 3.01, True, {"rel": 0.01}),
     ],
-    "demo_figure": [
+    "demo_b_figure": [
         record("fig-9-9/miss-trend", "Fig 9-9", "trend", "trend", "grows", "shrinks", False, known_miss="no contact model"),
     ],
 }
@@ -183,9 +183,9 @@ def make_fixture(work):
         os.makedirs(os.path.join(work, "results", study))
         with open(os.path.join(work, "results", study, "checks.json"), "w") as f:
             json.dump(records, f, indent=1)
-    with open(os.path.join(work, "results", "demo_verdicts", "runs.json"), "w") as f:
+    with open(os.path.join(work, "results", "demo_a_verdicts", "runs.json"), "w") as f:
         json.dump([{"name": "run 1", "values": {"steps": 100, "wall_s": 0.5}}], f)
-    with open(os.path.join(work, "results", "demo_verdicts", "fig-9-1.dat"), "w") as f:
+    with open(os.path.join(work, "results", "demo_a_verdicts", "fig-9-1.dat"), "w") as f:
         f.write("# t_ms twist_deg\n")
         for k in range(101):  # twist = 30 sin(pi t / 12) deg over t = 0..10 ms
             t = k / 10
