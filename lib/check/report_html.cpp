@@ -109,6 +109,7 @@ tr[hidden]{display:none}
 td.pass{background:#dcf3dc}td.fail{background:#f9c9c9;font-weight:600}td.miss{background:#fde7c4}td.shown{background:#e9ecf8}
 td.id{white-space:nowrap;font-family:ui-monospace,monospace;font-size:12px}
 td.note{min-width:26em;max-width:60em}
+td.quantity{min-width:12em}
 .gallery{display:flex;flex-wrap:wrap;gap:12px;margin:10px 0}
 figure{margin:0}
 figure.thumb{background:#fff;border:1px solid #d3d8e2;border-radius:6px;padding:6px;width:300px}
@@ -256,7 +257,7 @@ void write_table(std::ostringstream& h, const Block& b) {
     for (const auto& c : b.header) h << "<th>" << esc(c) << "</th>";
     h << "</tr></thead><tbody>\n";
     const auto col = [&](const char* name) { return std::find(b.header.begin(), b.header.end(), name) - b.header.begin(); };
-    const long verdict_col = col("verdict"), note_col = col("note"), id_col = col("check");
+    const long verdict_col = col("verdict"), note_col = col("note"), id_col = col("check"), quantity_col = col("quantity");
     for (std::size_t r = 0; r < b.rows.size(); ++r) {
         const auto& row = b.rows[r];
         h << "<tr";
@@ -269,7 +270,11 @@ void write_table(std::ostringstream& h, const Block& b) {
         h << ">";
         for (std::size_t i = 0; i < row.size(); ++i) {
             const long c = static_cast<long>(i);
-            std::string css = c == verdict_col ? verdict_cell_css(row[i]) : c == note_col ? "note" : c == id_col ? "id" : "";
+            std::string css = c == verdict_col ? verdict_cell_css(row[i])
+                              : c == note_col   ? "note"
+                              : c == id_col     ? "id"
+                              : c == quantity_col ? "quantity"
+                                                  : "";
             h << (css.empty() ? "<td>" : "<td class=\"" + css + "\">") << esc(row[i]) << "</td>";
         }
         h << "</tr>\n";
