@@ -24,6 +24,7 @@ namespace fem::check {
 namespace {
 
 using report::Block;
+using report::number;
 
 // CSS class of a verdict (the page's colours and filters).
 std::string verdict_css(Verdict v) {
@@ -48,11 +49,6 @@ std::optional<double> interpolate(const std::vector<std::pair<double, double>>& 
     return std::nullopt;
 }
 
-std::string number(double v) {
-    std::ostringstream s;
-    s << std::setprecision(6) << v;
-    return s.str();
-}
 
 std::string value_text(const nlohmann::json& v) {
     if (v.is_null()) return "(none)";

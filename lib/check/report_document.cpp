@@ -30,13 +30,6 @@ void md_table(std::ostringstream& md, const std::vector<std::string>& header, co
     md << '\n';
 }
 
-std::string number(double v) {
-    std::ostringstream s;
-    s.precision(6);
-    s << v;
-    return s.str();
-}
-
 // The cells of one Markdown table line ("| a | b \| c |"), unescaped.
 std::vector<std::string> split_row(const std::string& line) {
     std::vector<std::string> cells;
@@ -60,6 +53,13 @@ std::vector<std::string> split_row(const std::string& line) {
 }
 
 }  // namespace
+
+std::string number(double v) {
+    std::ostringstream s;
+    s.precision(6);
+    s << v;
+    return s.str();
+}
 
 std::string to_markdown(const std::vector<Block>& doc) {
     std::ostringstream md;

@@ -57,6 +57,9 @@ struct Block {
     std::vector<Badge> badges;                   // badges
 };
 
+/// A number as the report prints it (6 significant digits).
+std::string number(double v);
+
 std::string to_markdown(const std::vector<Block>& doc);
 std::string to_html(const std::vector<Block>& doc);
 
