@@ -61,6 +61,43 @@ EntityElements elements_of(int dim, int tag) {
     return e;
 }
 
+// Gmsh 4.8 indexes its table of physical names by dimension without checking it: a $PhysicalNames
+// entry of dimension 4, 6 or -1 in an MSH 4 file crashes the process inside GModel::setPhysicalName
+// (found by the fuzz target tests/fuzz/fuzz_gmsh, 2026-12-02; MSH 2.2 files skip such an entry). The section is plain text in
+// ASCII and binary files, so it is checked here before Gmsh reads the file.
+void check_physical_name_dimensions(const std::filesystem::path& path, const std::string& where) {
+    std::ifstream in(path, std::ios::binary);
+    std::string line;
+    int line_number = 0;
+    auto next = [&]() -> bool {
+        if (!std::getline(in, line)) return false;
+        ++line_number;
+        if (!line.empty() && line.back() == '\r') line.pop_back();
+        return true;
+    };
+    while (next()) {
+        if (line != "$PhysicalNames") continue;
+        if (!next()) return;  // a truncated section: Gmsh's own error says so
+        long count = 0;
+        try {
+            count = std::stol(line);
+        } catch (...) {
+            return;  // not a count: Gmsh refuses the section itself
+        }
+        for (long i = 0; i < count && next() && line != "$EndPhysicalNames"; ++i) {
+            long dimension = 0;
+            try {
+                dimension = std::stol(line);
+            } catch (...) {
+                continue;  // Gmsh reads a non-number as 0 (harmless)
+            }
+            if (dimension < 0 || dimension > 3)
+                throw InputError(where + " is malformed: line " + std::to_string(line_number) +
+                                 ": physical name of dimension " + std::to_string(dimension) +
+                                 " (a physical group is of dimension 0, 1, 2 or 3)");
+        }
+    }
+}
 }  // namespace
 
 GmshSession::GmshSession() {
@@ -208,6 +245,8 @@ Mesh read_gmsh(const std::filesystem::path& path) {
         throw InputError(where + " does not end in .msh (only Gmsh mesh files are read, not geometry or scripts)");
     if (!std::ifstream(path)) throw InputError(where + " cannot be opened for reading");
     if (std::filesystem::file_size(path, ec) == 0) throw InputError(where + " is empty");
+
+    check_physical_name_dimensions(path, where);
 
     GmshSession session;
     Mesh mesh;
