@@ -101,7 +101,7 @@ SANITIZER_ENV := ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:detect_stack_use_a
 # inputs it finds go to $(FUZZ_BUILD)/corpus/<target>). Crashes are written to $(FUZZ_BUILD)/.
 FUZZ_BUILD   ?= build-fuzz
 FUZZ_RUNS    ?= 100000
-FUZZ_TARGETS := gmsh modal_case topopt_case deck
+FUZZ_TARGETS := gmsh modal_case topopt_case explicit_case deck
 fuzz: deps
 	@[ -f $(FUZZ_BUILD)/.configured ] || { cmake -S . -B $(FUZZ_BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo \
 	  -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ -DFEM_FUZZ=ON && touch $(FUZZ_BUILD)/.configured; }
