@@ -41,6 +41,7 @@ STUDIES := $(sort $(notdir $(patsubst %/,%,$(dir $(wildcard studies/*/CMakeLists
 all: deps build
 	@status=0; for s in $(STUDIES); do echo "== $$s"; $(BUILD)/bin/$$s --figures figures --full || status=1; done; \
 	$(BUILD)/bin/fem-report --reference reference --results $(BUILD)/results --figures figures; \
+	$(REPORT_PAGE) || status=1; \
 	exit $$status
 
 test: deps build
@@ -86,6 +87,11 @@ $(STUDIES): build
 
 report: build
 	$(BUILD)/bin/fem-report --reference reference --results $(BUILD)/results --figures figures
+	$(REPORT_PAGE)
+
+# The report page opened in headless Chromium: images, links, counts and filters checked, screenshots
+# figures/REPORT-desktop.png and REPORT-narrow.png saved (tests/report/check_report_page.py).
+REPORT_PAGE = python3 tests/report/check_report_page.py page figures/REPORT.html figures
 
 bench: build
 	@set -e; for b in $(BUILD)/bench/*; do [ -x "$$b" ] && echo "== $$b" && "$$b"; done; true
@@ -101,7 +107,7 @@ SANITIZER_ENV := ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:detect_stack_use_a
 # inputs it finds go to $(FUZZ_BUILD)/corpus/<target>). Crashes are written to $(FUZZ_BUILD)/.
 FUZZ_BUILD   ?= build-fuzz
 FUZZ_RUNS    ?= 100000
-FUZZ_TARGETS := gmsh modal_case topopt_case deck
+FUZZ_TARGETS := gmsh modal_case topopt_case explicit_case deck
 fuzz: deps
 	@[ -f $(FUZZ_BUILD)/.configured ] || { cmake -S . -B $(FUZZ_BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo \
 	  -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ -DFEM_FUZZ=ON && touch $(FUZZ_BUILD)/.configured; }

@@ -48,6 +48,11 @@ bool ReferenceEntry::member_is_known_miss(const std::string& label) const {
     return std::find(known_miss_labels.begin(), known_miss_labels.end(), label) != known_miss_labels.end();
 }
 
+std::optional<CurvePoint> ReferenceEntry::curve_point(std::size_t k) const {
+    if (!curve || k >= curve_at.size()) return std::nullopt;
+    return CurvePoint{*curve, curve_at[k]};
+}
+
 const ReferenceEntry& ReferenceFile::entry(std::string_view id) const {
     for (const auto& e : entries)
         if (e.id == id) return e;
@@ -64,6 +69,39 @@ namespace {
 
 std::string optional_string(const toml::table& t, const char* key) {
     return t[key].value<std::string>().value_or("");
+}
+
+// curve = { file = "fig-3-41.dat", x = "t_ms", y = "twist_deg", at = 5.7 (or one per series member),
+//           x_label = "time (ms)", y_label = "twist (deg)" }
+void parse_curve(const toml::table& t, const std::filesystem::path& path, ReferenceEntry& e) {
+    const toml::table* c = t["curve"].as_table();
+    auto bad = [&](const std::string& what) {
+        fail(path, t.source(), "check '" + e.id + "': curve " + what +
+                                   " (curve = { file = \"<data file of the study>\", x = \"<column>\", y = \"<column>\", "
+                                   "at = <abscissa of the thesis value, or one per series member> })");
+    };
+    if (!c) bad("must be a table");
+    CurveRef ref;
+    for (auto [key, field] : {std::pair{"file", &ref.file}, {"x", &ref.x}, {"y", &ref.y}}) {
+        auto v = (*c)[key].value<std::string>();
+        if (!v || v->empty()) bad(std::string("lacks '") + key + "'");
+        *field = *v;
+    }
+    ref.x_label = (*c)["x_label"].value<std::string>().value_or("");
+    ref.y_label = (*c)["y_label"].value<std::string>().value_or("");
+    const std::filesystem::path file(ref.file);
+    if (file.is_absolute() || file.filename() != file) bad("file '" + ref.file + "' must be a file name in the study's results folder");
+    if (e.is_trend()) bad("is for a numeric thesis value, not a trend");
+    if (auto at = (*c)["at"].value<double>()) e.curve_at.push_back(*at);
+    else if (const toml::array* a = (*c)["at"].as_array())
+        for (const auto& v : *a) {
+            auto d = v.value<double>();
+            if (!d) bad("'at' holds a non-number");
+            e.curve_at.push_back(*d);
+        }
+    const std::size_t n = e.is_series() ? std::get<std::vector<double>>(e.thesis).size() : 1;
+    if (e.curve_at.size() != n) bad("needs 'at': " + std::to_string(n) + " abscissa(s), one per thesis value");
+    e.curve = ref;
 }
 
 const std::set<std::string> kBases = {"exact", "model", "reconstructed", "trend", "experiment"};
@@ -187,6 +225,7 @@ ReferenceEntry parse_entry(const toml::table& t, const std::filesystem::path& pa
             e.known_miss_labels.push_back(label);
         }
     }
+    if (t.contains("curve")) parse_curve(t, path, e);
     return e;
 }
 

@@ -45,6 +45,21 @@ struct HistoryEntry {
     std::string why;     // the reason
 };
 
+/// One of our curves, a column of a data file the study writes into its results folder
+/// (build/results/<study>/<file>, whitespace-separated, the first line "# <column names>").
+struct CurveRef {
+    std::string file;     // "fig-3-41.dat"
+    std::string x, y;     // column names: "t_ms", "loading_line_deg"
+    std::string x_label, y_label;  // axis titles; the column names when empty
+};
+
+/// Where a thesis value lies on one of our curves: the report draws the curve and marks the
+/// thesis's point (at, thesis value) on it, with its tolerance (reference file key `curve`).
+struct CurvePoint {
+    CurveRef curve;
+    double at = 0.0;  // the abscissa of the thesis's value, in the x column's unit
+};
+
 /// One [[check]] entry of a reference file.
 struct ReferenceEntry {
     std::string id;        // "table-2-2/quad-2/steps-1ms"
@@ -70,6 +85,13 @@ struct ReferenceEntry {
     // For a series: the members (labels) that are known misses; empty means every member.
     std::vector<std::string> known_miss_labels;
     std::vector<HistoryEntry> history;
+    // Where the thesis printed a value of a curve: our curve and the abscissa of each value (one per
+    // member of a series), e.g. curve = { file = "fig-3-41.dat", x = "t_ms", y = "twist_deg", at = 5.7 }.
+    std::optional<CurveRef> curve;
+    std::vector<double> curve_at;
+
+    /// The curve point of the single value, or of series member k.
+    std::optional<CurvePoint> curve_point(std::size_t k = 0) const;
 
     /// Judged against the thesis: every kind but Shown.
     bool judged() const { return kind != Kind::Shown; }

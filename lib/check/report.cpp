@@ -8,145 +8,47 @@
 #include <iomanip>
 #include <map>
 #include <set>
+#include <tuple>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
 
 #include "check/reference.hpp"
+#include "check/report_document.hpp"
 #include "check/study.hpp"
 #include "core/error.hpp"
 #include "io/atomic_file.hpp"
+#include "io/table.hpp"
 
 namespace fem::check {
 namespace {
 
-// A minimal document model written out twice, as Markdown and as HTML, so that the two reports
-// never disagree.
-struct Block {
-    enum Kind { Heading, Paragraph, Table, Image } kind;
-    int level = 0;
-    std::string text;                            // heading / paragraph / image caption
-    std::string file;                            // image
-    std::vector<std::string> header;             // table
-    std::vector<std::vector<std::string>> rows;  // table
-};
+using report::Block;
+using report::number;
 
-std::string html_escape(const std::string& s) {
-    std::string out;
-    for (char c : s) {
-        switch (c) {
-            case '<': out += "&lt;"; break;
-            case '>': out += "&gt;"; break;
-            case '&': out += "&amp;"; break;
-            case '"': out += "&quot;"; break;
-            default: out += c;
-        }
+// CSS class of a verdict (the page's colours and filters).
+std::string verdict_css(Verdict v) {
+    switch (v) {
+        case Verdict::Pass: return "pass";
+        case Verdict::KnownMiss: return "miss";
+        case Verdict::Shown: return "shown";
+        case Verdict::Fail:
+        case Verdict::UnexpectedPass: return "fail";
     }
-    return out;
-}
-
-std::string md_cell(std::string s) {
-    std::string out;
-    for (char c : s) {
-        if (c == '|') out += "\\|";
-        else if (c == '\n') out += ' ';
-        else out += c;
-    }
-    return out;
-}
-
-std::string slug(const std::string& s) {
-    std::string out;
-    for (char c : s) out += std::isalnum(static_cast<unsigned char>(c)) ? static_cast<char>(std::tolower(c)) : '-';
-    return out;
-}
-
-// CSS class of a verdict cell (labels from verdict_label()).
-std::string verdict_css(const std::string& label) {
-    for (Verdict v : {Verdict::Pass, Verdict::Fail, Verdict::KnownMiss, Verdict::UnexpectedPass, Verdict::Shown})
-        if (label == verdict_label(v))
-            switch (v) {
-                case Verdict::Pass: return "pass";
-                case Verdict::KnownMiss: return "miss";
-                case Verdict::Shown: return "shown";
-                default: return "fail";
-            }
     return "";
 }
 
-std::string to_markdown(const std::vector<Block>& doc) {
-    std::ostringstream md;
-    for (const auto& b : doc) {
-        switch (b.kind) {
-            case Block::Heading: md << std::string(b.level, '#') << ' ' << b.text << "\n\n"; break;
-            case Block::Paragraph: md << b.text << "\n\n"; break;
-            case Block::Image: md << "![" << b.text << "](" << b.file << ")\n\n"; break;
-            case Block::Table:
-                md << '|';
-                for (const auto& h : b.header) md << ' ' << md_cell(h) << " |";
-                md << "\n|";
-                for (std::size_t i = 0; i < b.header.size(); ++i) md << "---|";
-                md << '\n';
-                for (const auto& row : b.rows) {
-                    md << '|';
-                    for (const auto& c : row) md << ' ' << md_cell(c) << " |";
-                    md << '\n';
-                }
-                md << '\n';
-                break;
-        }
+// Our curve at x (linear between the first pair of neighbouring samples that brackets x); none when
+// x lies outside the curve.
+std::optional<double> interpolate(const std::vector<std::pair<double, double>>& curve, double x) {
+    for (std::size_t i = 0; i + 1 < curve.size(); ++i) {
+        const auto [xa, ya] = curve[i];
+        const auto [xb, yb] = curve[i + 1];
+        if ((xa <= x && x <= xb) || (xb <= x && x <= xa)) return xa == xb ? ya : ya + (yb - ya) * (x - xa) / (xb - xa);
     }
-    return md.str();
+    return std::nullopt;
 }
 
-std::string to_html(const std::vector<Block>& doc) {
-    std::ostringstream h;
-    h << "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\n"
-         "<title>Reproduction report</title>\n<style>\n"
-         "body{font-family:sans-serif;max-width:1200px;margin:2em auto;padding:0 1em;color:#222}\n"
-         "table{border-collapse:collapse;margin:1em 0;font-size:90%}\n"
-         "th,td{border:1px solid #bbb;padding:3px 6px;vertical-align:top}\nth{background:#eee}\n"
-         "td.pass{background:#dfd}td.fail{background:#fbb}td.miss{background:#fec}td.shown{background:#eef}\n"
-         "img{max-width:100%;border:1px solid #ddd;margin:0.5em 0}\n"
-         "</style></head><body>\n";
-    for (const auto& b : doc) {
-        switch (b.kind) {
-            case Block::Heading:
-                h << "<h" << b.level << " id=\"" << slug(b.text) << "\">" << html_escape(b.text) << "</h" << b.level << ">\n";
-                break;
-            case Block::Paragraph: h << "<p>" << html_escape(b.text) << "</p>\n"; break;
-            case Block::Image:
-                h << "<figure><img src=\"" << html_escape(b.file) << "\" alt=\"" << html_escape(b.text)
-                  << "\"><figcaption>" << html_escape(b.text) << "</figcaption></figure>\n";
-                break;
-            case Block::Table: {
-                h << "<table><tr>";
-                for (const auto& c : b.header) h << "<th>" << html_escape(c) << "</th>";
-                h << "</tr>\n";
-                const auto verdict_col = std::find(b.header.begin(), b.header.end(), "verdict") - b.header.begin();
-                for (const auto& row : b.rows) {
-                    h << "<tr>";
-                    for (std::size_t i = 0; i < row.size(); ++i) {
-                        if (static_cast<long>(i) == verdict_col) h << "<td class=\"" << verdict_css(row[i]) << "\">";
-                        else h << "<td>";
-                        h << html_escape(row[i]) << "</td>";
-                    }
-                    h << "</tr>\n";
-                }
-                h << "</table>\n";
-                break;
-            }
-        }
-    }
-    h << "</body></html>\n";
-    return h.str();
-}
-
-std::string number(double v) {
-    std::ostringstream s;
-    s << std::setprecision(6) << v;
-    return s.str();
-}
 
 std::string value_text(const nlohmann::json& v) {
     if (v.is_null()) return "(none)";
@@ -331,6 +233,24 @@ int write_report(const ReportInputs& in) {
               "verification (a method recovers a known input, or a property holds by construction) or shown "
               "(nothing to judge against). A known miss is judged like any other check and counted as not "
               "reproduced. Generated " + stamp.str() + ".");
+    {
+        // The counts at the top; on the page each is a button that filters the checks to those it counts.
+        Block by_verdict{Block::Badges};
+        by_verdict.text = "Checks by verdict:";
+        for (Verdict v : {Verdict::Pass, Verdict::KnownMiss, Verdict::Shown})
+            by_verdict.badges.push_back({std::string(verdict_label(v)), all.count(v), "verdict=" + verdict_css(v), verdict_css(v)});
+        by_verdict.badges.push_back({"failed", all.failed(), "verdict=fail", "fail"});
+        int discrepancies = 0;
+        for (const auto& s : studies)
+            for (const auto& r : s.records) discrepancies += !r.discrepancy.empty();
+        by_verdict.badges.push_back({"thesis discrepancies", discrepancies, "disc=1", "disc"});
+        doc.push_back(by_verdict);
+        Block by_kind{Block::Badges};
+        by_kind.text = "Checks by kind:";
+        for (Kind k : all_kinds())
+            by_kind.badges.push_back({std::string(kind_name(k)), all.count(k), "kind=" + std::string(kind_name(k)), "kind"});
+        doc.push_back(by_kind);
+    }
     heading(2, "Scorecard");
     {
         const int n = all.count(Kind::Reproduction);
@@ -451,9 +371,66 @@ int write_report(const ReportInputs& in) {
         else doc.push_back(changed);
     }
 
+    // A figure of an item: an image, or a table the study regenerated as Markdown (shown as a table).
+    auto add_figure = [&](const std::string& item, const std::string& file) {
+        const auto path = in.figures_dir / file;
+        if (!std::filesystem::exists(path)) {
+            paragraph("(" + item + ": " + file + " not drawn yet: run `make all`)");
+        } else if (path.extension() == ".md") {
+            std::ifstream md(path);
+            const std::string text((std::istreambuf_iterator<char>(md)), {});
+            paragraph(item + ", regenerated (" + file + "):");
+            for (auto& b : report::markdown_blocks(text)) doc.push_back(std::move(b));
+        } else {
+            doc.push_back({Block::Image, 0, item, file});
+        }
+    };
+    // Thesis values that lie on a curve of ours (reference key `curve`): one plot per curve.
+    auto add_curve_plots = [&](const std::string& study, const std::vector<const CheckRecord*>& records) {
+        std::map<std::tuple<std::string, std::string, std::string>, std::vector<const CheckRecord*>> curves;
+        for (const CheckRecord* r : records)
+            if (r->on_curve && r->thesis.is_number())
+                curves[{r->on_curve->curve.file, r->on_curve->curve.x, r->on_curve->curve.y}].push_back(r);
+        for (const auto& [key, points] : curves) {
+            const CurveRef& ref = points.front()->on_curve->curve;
+            Block plot{Block::Plot};
+            const CheckRecord& first = *points.front();
+            plot.plot.title = first.quantity + " (" + ref.file + ": " + ref.y + " over " + ref.x + ")";
+            plot.plot.x_label = ref.x_label.empty() ? ref.x : ref.x_label;
+            plot.plot.y_label = !ref.y_label.empty() ? ref.y_label : ref.y + (first.unit.empty() ? "" : " (" + first.unit + ")");
+            try {
+                const auto path = in.results_dir / study / ref.file;
+                const io::Table data = io::read_dat(path);
+                const auto& xs = io::column(data, ref.x, path);
+                const auto& ys = io::column(data, ref.y, path);
+                for (std::size_t i = 0; i < xs.size(); ++i) plot.plot.curve.emplace_back(xs[i], ys[i]);
+            } catch (const InputError& e) {
+                paragraph(std::string("(curve of ") + first.id + " not drawn: " + e.what() + ")");
+                continue;
+            }
+            for (const CheckRecord* r : points) {
+                report::Plot::Point p;
+                p.id = r->id;
+                p.x = r->on_curve->at;
+                p.thesis = r->thesis.get<double>();
+                const double against = r->reference.value_or(p.thesis);
+                const double band = r->tolerance ? r->tolerance->abs + r->tolerance->rel * std::abs(against) : 0.0;
+                p.low = against - band;
+                p.high = against + band;
+                p.ours_on_curve = interpolate(plot.plot.curve, p.x);
+                p.ours = value_text(r->reproduced);
+                p.verdict = verdict_label(verdict(*r));
+                p.css = verdict_css(verdict(*r));
+                plot.plot.points.push_back(p);
+            }
+            doc.push_back(std::move(plot));
+        }
+    };
+
     for (const auto& s : studies) {
         const std::string title = s.reference ? s.reference->title : s.name;
         heading(2, s.name + ": " + title);
+        doc.back().nav = s.name;
         if (s.reference && !s.reference->section.empty()) paragraph("Thesis " + s.reference->section + ". Study: `studies/" + s.name + "/`, reference values: `reference/" + s.name + ".toml`.");
         if (s.reference && !s.reference->summary.empty()) paragraph(s.reference->summary);
         if (!s.has_results) {
@@ -472,11 +449,10 @@ int write_report(const ReportInputs& in) {
                     // A figure belongs to an item when the item names it ("Table 2-2, Fig 2-5").
                     if (item.find(fig_item) == std::string::npos && fig_item != item) continue;
                     figure_item_done[fig_item] = true;
-                    for (const auto& file : files)
-                        if (std::filesystem::exists(in.figures_dir / file)) doc.push_back({Block::Image, 0, fig_item, file});
-                        else paragraph("(" + fig_item + ": " + file + " not drawn yet: run `make all`)");
+                    for (const auto& file : files) add_figure(fig_item, file);
                 }
             }
+            add_curve_plots(s.name, records);
             Block table{Block::Table};
             table.header = {"check", "kind", "quantity", "unit", "basis", "thesis", "ours", "deviation", "tolerance", "verdict", "note"};
             for (const CheckRecord* r : records) {
@@ -492,6 +468,7 @@ int write_report(const ReportInputs& in) {
                 table.rows.push_back({r->id, std::string(kind_name(r->kind)), r->quantity, r->unit, r->basis, thesis_text(*r),
                                       value_text(r->reproduced), deviation_text(*r), tolerance_text(*r),
                                       std::string(verdict_label(verdict(*r))), note});
+                table.tags.push_back({verdict_css(verdict(*r)), std::string(kind_name(r->kind)), r->basis, !r->discrepancy.empty()});
             }
             doc.push_back(table);
         }
@@ -500,8 +477,7 @@ int write_report(const ReportInputs& in) {
             for (const auto& [fig_item, files] : s.reference->figures)
                 if (!figure_item_done[fig_item]) {
                     heading(3, fig_item);
-                    for (const auto& file : files)
-                        if (std::filesystem::exists(in.figures_dir / file)) doc.push_back({Block::Image, 0, fig_item, file});
+                    for (const auto& file : files) add_figure(fig_item, file);
                 }
         if (!s.runs.empty()) {
             heading(3, "Solver runs");
@@ -522,8 +498,8 @@ int write_report(const ReportInputs& in) {
     }
 
     std::filesystem::create_directories(in.figures_dir);
-    io::write_text_file(in.figures_dir / "REPORT.md", to_markdown(doc));
-    io::write_text_file(in.figures_dir / "REPORT.html", to_html(doc));
+    io::write_text_file(in.figures_dir / "REPORT.md", report::to_markdown(doc));
+    io::write_text_file(in.figures_dir / "REPORT.html", report::to_html(doc));
     return all.failed();
 }
 

@@ -56,6 +56,9 @@ nlohmann::json CheckRecord::to_json() const {
         for (const auto& e : history) h.push_back({{"date", e.date}, {"change", e.change}, {"was", e.was}, {"why", e.why}});
         j["history"] = h;
     }
+    if (on_curve)
+        j["curve"] = {{"file", on_curve->curve.file}, {"x", on_curve->curve.x}, {"y", on_curve->curve.y},
+                      {"x_label", on_curve->curve.x_label}, {"y_label", on_curve->curve.y_label}, {"at", on_curve->at}};
     return j;
 }
 
@@ -88,6 +91,11 @@ CheckRecord CheckRecord::from_json(const nlohmann::json& j) {
     if (j.contains("history") && j["history"].is_array())
         for (const auto& e : j["history"])
             r.history.push_back({e.value("date", ""), e.value("change", ""), e.value("was", ""), e.value("why", "")});
+    if (j.contains("curve") && j["curve"].is_object()) {
+        const auto& c = j["curve"];
+        r.on_curve = CurvePoint{{c.value("file", ""), c.value("x", ""), c.value("y", ""), c.value("x_label", ""), c.value("y_label", "")},
+                                c.value("at", 0.0)};
+    }
     return r;
 }
 
@@ -219,6 +227,7 @@ CheckRecord Study::start_record(const ReferenceEntry& e, std::string note) const
     r.reason = e.reason;
     r.discrepancy = e.discrepancy;
     r.note = join_joined(e.note, note);
+    r.on_curve = e.curve_point();
     return r;
 }
 
@@ -253,6 +262,7 @@ void Study::check(std::string_view id, std::span<const double> reproduced, std::
     for (std::size_t k = 0; k < thesis.size(); ++k) {
         CheckRecord r = start_record(e, note);
         r.id = e.id + "/" + e.member_label(k);
+        r.on_curve = e.curve_point(k);
         if (!e.member_is_known_miss(e.member_label(k))) r.known_miss.clear();
         r.thesis = thesis[k];
         r.reproduced = reproduced[k];

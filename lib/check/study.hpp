@@ -45,6 +45,7 @@ struct CheckRecord {
     std::string note, discrepancy, reason;
     std::string known_miss;      // why this is expected to miss (empty: it is expected to pass)
     std::vector<HistoryEntry> history;
+    std::optional<CurvePoint> on_curve;  // the thesis value is a point of this curve of ours (report plot)
 
     nlohmann::json to_json() const;
     /// Throws InputError for a record without a valid kind (written before kinds existed: re-run).

@@ -13,11 +13,11 @@
 
 #include <fmt/format.h>
 
+#include "cli/case_command_line.hpp"
 #include "cli/programs.hpp"
 #include "core/error.hpp"
 #include "core/program.hpp"
 #include "core/progress.hpp"
-#include "input/arguments.hpp"
 #include "io/atomic_file.hpp"
 #include "io/run_folder.hpp"
 #include "io/table.hpp"
@@ -28,26 +28,14 @@ namespace fem::cli {
 
 int topopt_program(int argc, char** argv) {
     return fem::run_program("fem-topopt", [&]() {
-        std::string case_path, output;
-        bool quiet = false;
-        fem::input::Arguments args(argc, argv, {"--help", "--output", "--quiet"});
-        while (args.next()) {
-            if (args.is("--help") || args.is("-h")) {
-                std::cout << "usage: fem-topopt CASE.toml [--output DIR] [--quiet]\n"
-                             "Minimum-compliance topology optimization (SIMP, OC). Case file format: see\n"
-                             "lib/topopt/case_file.hpp. Writes history.dat, density.dat and design.vtu to DIR.\n";
-                return 0;
-            } else if (args.is("--output")) {
-                output = args.value();
-            } else if (args.is("--quiet")) {
-                quiet = true;
-            } else {
-                args.positional(case_path);
-            }
-        }
-        if (case_path.empty()) throw fem::InputError("no case file given (usage: fem-topopt CASE.toml [--output DIR])");
-        auto c = fem::topopt::read_case(case_path);
-        if (!output.empty()) c.output_directory = output;
+        const auto line = read_case_command_line(
+            argc, argv, "fem-topopt CASE.toml [--output DIR] [--quiet]",
+            "Minimum-compliance topology optimization (SIMP, OC). Case file format: see\n"
+            "lib/topopt/case_file.hpp. Writes history.dat, density.dat and design.vtu to DIR.\n");
+        if (!line) return 0;  // --help
+        const bool quiet = line->quiet;
+        auto c = fem::topopt::read_case(line->case_path);
+        if (!line->output.empty()) c.output_directory = line->output;
         // The output folder is checked (writable, not in use by another run) before optimizing; the
         // files replace the previous run's set only when they are all written (manifest.txt).
         fem::io::RunFolder out(c.output_directory, "fem-topopt");

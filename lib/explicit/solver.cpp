@@ -250,6 +250,10 @@ std::string RunSummary::text() const {
                      energy.balance_error, energy.max_abs_balance_error, energy.relative_error(), energy.reference);
     s += fmt::format("  hourglass energy: max {:.4g} J = {:.3g} of the max internal energy {:.4g} J\n",
                      energy.max_hourglass, energy.hourglass_fraction(), energy.max_internal);
+    if (energy.parts.size() > 1)
+        for (const auto& p : energy.parts)
+            s += fmt::format("    part '{}': max {:.4g} J = {:.3g} of its max internal energy {:.4g} J\n", p.part,
+                             p.max_hourglass, p.hourglass_fraction(), p.max_internal);
     s += fmt::format("  wall time {:.3f} s, {:.4g} element-cycles/s\n", wall_s, element_cycles_per_s);
     const auto row = [&](const char* what, double t) {
         return fmt::format("    {:<24} {:10.3f} {:7.1f} %\n", what, t, wall_s > 0 ? 100.0 * t / wall_s : 0.0);
@@ -283,6 +287,12 @@ nlohmann::json RunSummary::to_json() const {
                                    {"dissipated_energy_J", c.dissipated_energy},
                                    {"search_s", c.search_s},
                                    {"forces_s", c.forces_s}});
+    nlohmann::json parts_json = nlohmann::json::array();
+    for (const auto& p : energy.parts)
+        parts_json.push_back({{"part", p.part},
+                              {"max_internal_energy_J", p.max_internal},
+                              {"max_hourglass_energy_J", p.max_hourglass},
+                              {"hourglass_fraction_of_internal", p.hourglass_fraction()}});
     return {{"name", name},
             {"nodes", nodes},
             {"rotational_nodes", rotational_nodes},
@@ -312,6 +322,7 @@ nlohmann::json RunSummary::to_json() const {
             {"energy_contact_J", energy.contact},
             {"energy_balance_relative_error", energy.relative_error()},
             {"hourglass_fraction_of_internal", energy.hourglass_fraction()},
+            {"parts", parts_json},
             {"wall_s", wall_s},
             {"element_cycles_per_s", element_cycles_per_s},
             {"timing_s",
@@ -399,6 +410,16 @@ void ExplicitSolver::initialize() {
     double solid_table_dt = std::numeric_limits<double>::infinity();
     solid_.assign(groups.size(), 0);
     dt_factor_.assign(groups.size(), 1.0);
+    // Parts for the per-part energies (EnergySummary::parts), in the order of their first group.
+    group_part_.assign(groups.size(), -1);
+    for (std::size_t gi = 0; gi < groups.size(); ++gi) {
+        auto& parts = summary_.energy.parts;
+        const auto it = std::find_if(parts.begin(), parts.end(), [&](const PartEnergy& p) { return p.part == groups[gi]->part; });
+        group_part_[gi] = static_cast<int>(it - parts.begin());
+        if (it == parts.end()) parts.push_back({groups[gi]->part});
+    }
+    part_int_.assign(summary_.energy.parts.size(), 0.0);
+    part_hg_.assign(summary_.energy.parts.size(), 0.0);
     for (std::size_t gi = 0; gi < groups.size(); ++gi) {
         auto& g = groups[gi];
         const std::vector<double> ref = g->reference_time_steps();
@@ -683,6 +704,8 @@ void ExplicitSolver::compute_forces(bool compute_dt) {
         for (int i = 0; i < n; ++i) s_.fv[i].setZero();
     }
     e_int_ = e_hg_ = visc_power_ = 0.0;
+    std::fill(part_int_.begin(), part_int_.end(), 0.0);
+    std::fill(part_hg_.begin(), part_hg_.end(), 0.0);
     group_vm_.resize(model_.groups().size());
     double dt = std::numeric_limits<double>::infinity();
     int dg = -1, de = -1;
@@ -694,6 +717,8 @@ void ExplicitSolver::compute_forces(bool compute_dt) {
             unstable(fmt::format("{} is inverted or has a non-finite state", element_name(g, r.bad_element)));
         e_int_ += r.internal_energy;
         e_hg_ += r.hourglass_energy;
+        part_int_[group_part_[g]] += r.internal_energy;
+        part_hg_[group_part_[g]] += r.hourglass_energy;
         // Groups that add their viscous forces to s_.fv are booked in the update loop instead.
         if (!(book_viscous_ && groups[g]->adds_viscous_forces())) visc_power_ += r.viscous_power;
         double& vm = max_vm_[groups[g]->part];
@@ -1000,6 +1025,12 @@ void ExplicitSolver::write_restart(const std::filesystem::path& path) const {
         {"E_balance_error", E.balance_error}, {"E_max_abs_balance_error", E.max_abs_balance_error},
         {"E_reference", E.reference}};
     for (const auto& [name, value] : scalars) w.write(std::string("solver/") + name, std::vector<double>{value});
+    std::vector<double> part_max_int, part_max_hg;
+    for (const auto& p : E.parts) part_max_int.push_back(p.max_internal), part_max_hg.push_back(p.max_hourglass);
+    w.write("solver/part_max_internal", part_max_int);
+    w.write("solver/part_max_hourglass", part_max_hg);
+    w.write("solver/part_internal", part_int_);
+    w.write("solver/part_hourglass", part_hg_);
     std::vector<std::string> vm_parts;
     std::vector<double> vm_values;
     for (const auto& [part, vm] : max_vm_) vm_parts.push_back(part), vm_values.push_back(vm);
@@ -1148,6 +1179,17 @@ void ExplicitSolver::restore(const std::filesystem::path& path) {
     E.balance_error = get("E_balance_error");
     E.max_abs_balance_error = get("E_max_abs_balance_error");
     E.reference = get("E_reference");
+    if (r.has("solver/part_max_internal")) {  // per-part energies (files written before them have none)
+        const auto max_int = r.read("solver/part_max_internal"), max_hg = r.read("solver/part_max_hourglass");
+        const auto now_int = r.read("solver/part_internal"), now_hg = r.read("solver/part_hourglass");
+        if (max_int.size() != E.parts.size() || max_hg.size() != E.parts.size() || now_int.size() != E.parts.size() ||
+            now_hg.size() != E.parts.size())
+            throw InputError(fmt::format("{}: {} parts with energies, the model has {}", file,
+                                         max_int.size(), E.parts.size()));
+        for (std::size_t p = 0; p < E.parts.size(); ++p) E.parts[p].max_internal = max_int[p], E.parts[p].max_hourglass = max_hg[p];
+        part_int_ = now_int;
+        part_hg_ = now_hg;
+    }
     // The measured stability factor carries over (the start-up measurement is not repeated).
     auto& groups = model_.groups();
     for (std::size_t gi = 0; gi < groups.size(); ++gi)
@@ -1474,6 +1516,10 @@ RunSummary ExplicitSolver::run() {
         E.max_abs_balance_error = std::max(E.max_abs_balance_error, std::abs(E.balance_error));
         E.max_internal = std::max(E.max_internal, E.internal);
         E.max_hourglass = std::max(E.max_hourglass, std::abs(E.hourglass));
+        for (std::size_t p = 0; p < E.parts.size(); ++p) {
+            E.parts[p].max_internal = std::max(E.parts[p].max_internal, part_int_[p]);
+            E.parts[p].max_hourglass = std::max(E.parts[p].max_hourglass, std::abs(part_hg_[p]));
+        }
         input_scale_ = std::abs(e0_) + w_abs_ + std::abs(w_prov_);
         E.reference = std::max({E.reference, input_scale_, tot.ke_plus + e_int_ + e_hg_});
 

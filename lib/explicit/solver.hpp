@@ -269,6 +269,16 @@ struct History {
     std::map<std::string, std::vector<double>> max_von_mises;  // per part
 };
 
+/// Largest internal and hourglass energies of one part over the run (the same measure as
+/// EnergySummary::hourglass_fraction, per part): which part carries the hourglass energy.
+struct PartEnergy {
+    std::string part;
+    double max_internal = 0, max_hourglass = 0;  // [J]
+    double hourglass_fraction() const {
+        return max_internal > 0 ? max_hourglass / max_internal : (max_hourglass > 0 ? 1.0 : 0.0);
+    }
+};
+
 struct EnergySummary {
     double kinetic = 0, internal = 0, hourglass = 0;
     double damping = 0;       // dissipated by mass-proportional damping
@@ -285,6 +295,7 @@ struct EnergySummary {
     /// a run whose internal energy has decayed at the end is still judged where it mattered (the
     /// LS-DYNA rule of thumb: below 10 %; check/run_health.hpp).
     double hourglass_fraction() const { return max_internal > 0 ? max_hourglass / max_internal : (max_hourglass > 0 ? 1.0 : 0.0); }
+    std::vector<PartEnergy> parts;  // per part of the model's element groups, in the order they were added
 };
 
 /// Where the wall time of a run went (LS-DYNA's timing table at the end of d3hsp) [s]. Measured
@@ -412,6 +423,10 @@ private:
     // visc_power_: viscous power of the groups that do not add their viscous forces to s_.fv
     // (booked first-order); book_viscous_: s_.fv is allocated and booked in the update loop.
     double e_int_ = 0, e_hg_ = 0, visc_power_ = 0;
+    // Per part (EnergySummary::parts): each group's part, and the parts' energies at the last force
+    // evaluation.
+    std::vector<int> group_part_;
+    std::vector<double> part_int_, part_hg_;
     bool book_viscous_ = false;
     std::map<std::string, double> max_vm_;
     double next_history_ = 0.0, next_vtu_ = 0.0;

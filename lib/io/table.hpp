@@ -19,6 +19,12 @@ struct Table {
 
 /// gnuplot data file: "# name1 name2 ..." then one row per line, 10 significant digits.
 void write_dat(const std::filesystem::path& path, const Table& table);
+/// Reads a gnuplot data file as write_dat writes it: the first line "# name1 name2 ...", then rows
+/// of as many numbers (blank lines and further '#' lines are skipped). Throws InputError naming the
+/// file and line for a missing file, a missing header or a malformed row.
+Table read_dat(const std::filesystem::path& path);
+/// The column named `name`; throws InputError naming the file's columns when there is none.
+const std::vector<double>& column(const Table& table, const std::string& name, const std::filesystem::path& path);
 /// CSV with a header row.
 void write_csv(const std::filesystem::path& path, const Table& table);
 

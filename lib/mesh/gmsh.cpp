@@ -3,6 +3,8 @@
 #include <gmsh.h>
 
 #include <algorithm>
+#include <cstdlib>
+#include <iterator>
 #include <fstream>
 #include <map>
 #include <mutex>
@@ -63,38 +65,45 @@ EntityElements elements_of(int dim, int tag) {
 
 // Gmsh 4.8 indexes its table of physical names by dimension without checking it: a $PhysicalNames
 // entry of dimension 4, 6 or -1 in an MSH 4 file crashes the process inside GModel::setPhysicalName
-// (found by the fuzz target tests/fuzz/fuzz_gmsh, 2026-12-02; MSH 2.2 files skip such an entry). The section is plain text in
-// ASCII and binary files, so it is checked here before Gmsh reads the file.
+// (found by the fuzz target tests/fuzz/fuzz_gmsh, 2026-12-02; MSH 2.2 files skip such an entry). So
+// the entries are checked here before Gmsh reads the file, read the way Gmsh's _readMSH4 reads them:
+// a section starts wherever a 256-byte fgets() chunk begins with "$PhysicalNames" (a prefix test, and
+// a chunk may begin in mid-line after an fscanf), then fscanf("%d") for the count and, per entry,
+// "%d %d" and an fgets() of the rest of the line for the name. Every occurrence of the keyword is
+// checked, a superset of the places Gmsh can take for a section header.
 void check_physical_name_dimensions(const std::filesystem::path& path, const std::string& where) {
     std::ifstream in(path, std::ios::binary);
-    std::string line;
-    int line_number = 0;
-    auto next = [&]() -> bool {
-        if (!std::getline(in, line)) return false;
-        ++line_number;
-        if (!line.empty() && line.back() == '\r') line.pop_back();
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const char* const begin = text.c_str();
+    const char* const end = begin + text.size();
+    constexpr std::size_t kGmshLineBuffer = 255;  // fgets(str, 256, fp) reads at most 255 bytes
+    // After an fgets() from `from`: the byte after the newline, or after 255 bytes.
+    auto after_fgets = [&](const char* from) {
+        const char* limit = std::min(end, from + kGmshLineBuffer);
+        const char* newline = std::find(from, limit, '\n');
+        return newline == limit ? limit : newline + 1;
+    };
+    auto read_int = [&](const char*& at, long& value) {  // fscanf("%d"): skips white space, stops at a non-digit
+        char* stop = nullptr;
+        value = std::strtol(at, &stop, 10);
+        if (stop == at) return false;
+        at = stop;
         return true;
     };
-    while (next()) {
-        if (line != "$PhysicalNames") continue;
-        if (!next()) return;  // a truncated section: Gmsh's own error says so
+    const std::string keyword = "$PhysicalNames";
+    for (std::size_t found = text.find(keyword); found != std::string::npos; found = text.find(keyword, found + 1)) {
+        const char* at = after_fgets(begin + found);
         long count = 0;
-        try {
-            count = std::stol(line);
-        } catch (...) {
-            return;  // not a count: Gmsh refuses the section itself
-        }
-        for (long i = 0; i < count && next() && line != "$EndPhysicalNames"; ++i) {
-            long dimension = 0;
-            try {
-                dimension = std::stol(line);
-            } catch (...) {
-                continue;  // Gmsh reads a non-number as 0 (harmless)
+        if (!read_int(at, count)) continue;  // Gmsh refuses the section itself
+        for (long i = 0; i < count && at < end; ++i) {
+            long dimension = 0, tag = 0;
+            if (!read_int(at, dimension) || !read_int(at, tag)) break;
+            if (dimension < 0 || dimension > 3) {
+                const long line = 1 + std::count(begin, at, '\n');
+                throw InputError(where + " is malformed: line " + std::to_string(line) + ": physical name of dimension " +
+                                 std::to_string(dimension) + " (a physical group is of dimension 0, 1, 2 or 3)");
             }
-            if (dimension < 0 || dimension > 3)
-                throw InputError(where + " is malformed: line " + std::to_string(line_number) +
-                                 ": physical name of dimension " + std::to_string(dimension) +
-                                 " (a physical group is of dimension 0, 1, 2 or 3)");
+            at = after_fgets(at);
         }
     }
 }

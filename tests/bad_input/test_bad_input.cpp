@@ -50,7 +50,7 @@ std::vector<Case> load_cases() {
         t.allow({"name", "program", "input", "replace", "args", "exit", "messages"});
         Case c;
         c.name = t.string("name");
-        c.program = t.choice("program", {"fem-modal", "fem-topopt"});
+        c.program = t.choice("program", {"fem-modal", "fem-topopt", "fem-explicit"});
         c.input = t.string("input");
         if (t.has("replace"))
             for (const auto& row : t.string_matrix("replace", 2)) c.replace.emplace_back(row[0], row[1]);
@@ -61,7 +61,7 @@ std::vector<Case> load_cases() {
     }
     for (const auto& t : root.tables("sweep")) {
         t.allow({"name", "program", "input", "values", "messages", "fields"});
-        const std::string name = t.string("name"), program = t.choice("program", {"fem-modal", "fem-topopt"});
+        const std::string name = t.string("name"), program = t.choice("program", {"fem-modal", "fem-topopt", "fem-explicit"});
         const std::string input = t.string("input");
         const auto values = t.strings("values");
         const auto messages = t.strings("messages");
@@ -88,7 +88,7 @@ const std::vector<Case>& corpus() {
 // Runs program(args) in-process; returns the exit status, with stdout and stderr captured.
 int run(const std::string& program, std::vector<std::string> args, std::string& printed) {
     static const std::map<std::string, std::function<int(int, char**)>> programs = {
-        {"fem-modal", fem::cli::modal_program}, {"fem-topopt", fem::cli::topopt_program}};
+        {"fem-modal", fem::cli::modal_program}, {"fem-topopt", fem::cli::topopt_program}, {"fem-explicit", fem::cli::explicit_program}};
     args.insert(args.begin(), program);
     std::vector<char*> argv;
     for (auto& a : args) argv.push_back(a.data());
@@ -136,9 +136,10 @@ TEST_P(BadInput, EndsAsExpected) {
     const int status = run(c.program, args, printed);
     EXPECT_EQ(status, c.exit) << c.name << " printed:\n" << printed;
     for (const auto& m : c.messages) EXPECT_NE(printed.find(m), std::string::npos) << c.name << ": expected '" << m << "' in:\n" << printed;
-    if (status != 0 && fs::exists(out))
+    if (status != 0 && fs::exists(out)) {
         for (const auto& entry : fs::recursive_directory_iterator(out))
             EXPECT_FALSE(entry.is_regular_file()) << c.name << " was refused but wrote " << entry.path();
+    }
     if (!::testing::Test::HasFailure()) fs::remove_all(work);
 }
 

@@ -13,6 +13,7 @@
 #include "check/report.hpp"
 #include "check/study.hpp"
 #include "core/error.hpp"
+#include "io/table.hpp"
 
 namespace fs = std::filesystem;
 using namespace fem::check;
@@ -368,6 +369,14 @@ TEST(Report, ListsEveryStudyAndTheDiscrepancies) {
     EXPECT_NE(md.find("## Entries changed after their first run"), std::string::npos);
     EXPECT_NE(md.find("a miss is not hidden as shown"), std::string::npos);
     EXPECT_TRUE(fs::exists(dir.path / "figures" / "REPORT.html"));
+    // A table a study regenerated as Markdown is shown as a table, not as a (broken) image.
+    std::ifstream html_in(dir.path / "figures" / "REPORT.html");
+    const std::string html((std::istreambuf_iterator<char>(html_in)), {});
+    EXPECT_EQ(html.find("<img src=\"table-9-1.md\""), std::string::npos);
+    EXPECT_NE(md.find("Table 9-1, regenerated (table-9-1.md):\n\n| a |\n|---|\n| 1 |"), std::string::npos);
+    // The page's filters: every check row carries its verdict, kind and basis.
+    EXPECT_NE(html.find("data-verdict=\"miss\" data-kind=\"reproduction\" data-basis=\"model\""), std::string::npos);
+    EXPECT_NE(html.find("<button class=\"badge miss\" data-filter=\"verdict=miss\" data-count=\"2\">"), std::string::npos);
 
     // fem-report refuses a reference entry without a kind, naming the file and the entry.
     auto no_kind = std::string(kReference);
@@ -379,5 +388,63 @@ TEST(Report, ListsEveryStudyAndTheDiscrepancies) {
     } catch (const fem::InputError& e) {
         EXPECT_NE(std::string(e.what()).find("other.toml"), std::string::npos) << e.what();
         EXPECT_NE(std::string(e.what()).find("'table-9-1/a' lacks 'kind'"), std::string::npos) << e.what();
+    }
+}
+
+TEST(Report, DrawsThesisCurveValuesOnOurCurve) {
+    TempDir dir;
+    fs::create_directories(dir.path / "reference");
+    const char* reference = R"toml(
+study = "demo"
+[[check]]
+id = "fig-9-4/values"
+source = "Fig 9-4"
+quantity = "twist at two times"
+unit = "deg"
+basis = "model"
+kind = "reproduction"
+thesis = [10.0, 25.0]
+labels = ["early", "peak"]
+tolerance = { rel = 0.1 }
+reason = "mesh"
+curve = { file = "fig-9-4.dat", x = "t_ms", y = "twist_deg", x_label = "time (ms)", at = [1.0, 3.0] }
+)toml";
+    write(dir.path / "reference" / "demo.toml", reference);
+    DemoArgs argv(dir.path / "reference" / "demo.toml", dir.path / "results" / "demo");
+    {
+        Study study("demo", argv.argc(), argv.data());
+        // Our curve: twist = 10 t (deg, t in ms); the thesis's 25 deg at 3 ms lies 5 deg below it.
+        fem::io::Table curve;
+        curve.add("t_ms", {0.0, 2.0, 4.0}).add("twist_deg", {0.0, 20.0, 40.0});
+        fem::io::write_dat(study.results_dir() / "fig-9-4.dat", curve);
+        const std::vector<double> ours = {10.0, 30.0};
+        study.check("fig-9-4/values", ours);
+        EXPECT_EQ(study.finish(), 1);  // 30 against 25 +- 10 %: fails
+    }
+    std::ifstream in(dir.path / "results" / "demo" / "checks.json");
+    const auto j = nlohmann::json::parse(in);
+    EXPECT_EQ(j[1]["curve"]["at"], 3.0);
+    EXPECT_EQ(CheckRecord::from_json(j[1]).on_curve->curve.y, "twist_deg");
+
+    EXPECT_EQ(write_report({dir.path / "reference", dir.path / "results", dir.path / "figures"}), 1);
+    std::ifstream md_in(dir.path / "figures" / "REPORT.md");
+    const std::string md((std::istreambuf_iterator<char>(md_in)), {});
+    EXPECT_NE(md.find("| fig-9-4/values/early | 1 | 10 | 9 .. 11 | 10 | 10 | pass |"), std::string::npos) << md;
+    EXPECT_NE(md.find("| fig-9-4/values/peak | 3 | 25 | 22.5 .. 27.5 | 30 | 30 | FAIL |"), std::string::npos) << md;
+    std::ifstream html_in(dir.path / "figures" / "REPORT.html");
+    const std::string html((std::istreambuf_iterator<char>(html_in)), {});
+    EXPECT_NE(html.find("<svg class=\"plot\""), std::string::npos);
+    EXPECT_NE(html.find("<circle class=\"point fail\""), std::string::npos);
+    EXPECT_NE(html.find("<circle class=\"point pass\""), std::string::npos);
+
+    // An abscissa per thesis value, or the reference file is refused naming the entry.
+    std::string bad = reference;
+    bad.replace(bad.find("at = [1.0, 3.0]"), 15, "at = 1.0");
+    write(dir.path / "reference" / "demo.toml", bad);
+    try {
+        load_reference(dir.path / "reference" / "demo.toml");
+        ADD_FAILURE() << "a curve without an abscissa per value was accepted";
+    } catch (const fem::InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("'fig-9-4/values': curve needs 'at': 2"), std::string::npos) << e.what();
     }
 }

@@ -67,6 +67,21 @@ TEST(Table, DatHasHeaderAndRows) {
     io::write_csv(dir / "t.csv", t);
     EXPECT_EQ(slurp(dir / "t.csv"), "t,x\n0,0.5\n1,1.5\n2,2.5\n");
     EXPECT_THROW(t.add("y", {1.0}), std::invalid_argument);
+
+    // read_dat reads back what write_dat wrote; a malformed file is refused naming file and line.
+    const io::Table back = io::read_dat(dir / "t.dat");
+    EXPECT_EQ(back.names, t.names);
+    EXPECT_EQ(back.columns, t.columns);
+    EXPECT_EQ(io::column(back, "x", dir / "t.dat")[2], 2.5);
+    EXPECT_THROW(io::column(back, "y", dir / "t.dat"), fem::InputError);
+    std::ofstream(dir / "bad.dat") << "# t x\n0 0.5\n1\n";
+    try {
+        io::read_dat(dir / "bad.dat");
+        ADD_FAILURE() << "a short row was accepted";
+    } catch (const fem::InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("bad.dat:3: 1 values, the header names 2 columns"), std::string::npos) << e.what();
+    }
+    EXPECT_THROW(io::read_dat(dir / "missing.dat"), fem::InputError);
 }
 
 TEST(Vtu, WritesCellsFieldsAndSeries) {

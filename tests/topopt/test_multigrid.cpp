@@ -170,21 +170,28 @@ TEST(TopoptMultigrid, SameDesignsAsDirectOnMbb60x20) {
 
 namespace {
 
-// 300 x 100 (60,000 DOF; the multigrid is what `auto` picks here): the same iteration counts and the
-// compliance of issue 16's reference (the 88-line code under GNU Octave, tight bisection) to the
-// stopping tolerance. About 30 s (sensitivity) and 60 s (density) of CPU time.
-void expect_reference_design(FilterKind filter, int iterations, double compliance) {
+// 300 x 100 (60,000 DOF; the multigrid is what `auto` picks here): over the first 20 design
+// iterations (where the design moves most, so the warm start helps least) the multigrid-CG gives the
+// direct solver's compliances to its own tolerance, i.e. the same designs at scale. A few seconds of
+// CPU; the whole optimization against issue 16's reference (the 88-line code under GNU Octave: 364
+// and 837 iterations, c = 189.4711 and 195.305) takes 30 s and 60 s and is checked by `make bench`
+// (bench_topopt, Mbb300x100_*_ReferenceDesign), not by every `make test`.
+void expect_same_start_as_direct(FilterKind filter) {
     const Model m = mbb(300, 100);
     Settings s = mbb_settings(filter, SolverKind::Automatic);
     s.multigrid_coarsest = Settings().multigrid_coarsest;
-    const Result r = optimize(m, s);
-    EXPECT_NE(r.solver.find("multigrid"), std::string::npos) << r.solver;
-    EXPECT_TRUE(r.converged);
-    EXPECT_EQ(r.iterations, iterations);
-    EXPECT_NEAR(r.compliance.back(), compliance, 5e-5 * compliance);
+    s.max_iterations = 20;
+    const Result g = optimize(m, s);
+    EXPECT_NE(g.solver.find("multigrid"), std::string::npos) << g.solver;
+    s.solver = SolverKind::Direct;
+    const Result d = optimize(m, s);
+    ASSERT_EQ(g.iterations, 20);
+    ASSERT_EQ(d.iterations, 20);
+    for (int i = 0; i < 20; ++i)
+        EXPECT_NEAR(g.compliance[i], d.compliance[i], 1e-6 * d.compliance[i]) << "iteration " << i;
 }
 
-TEST(TopoptMultigrid, ReferenceDesignMbb300x100Sensitivity) { expect_reference_design(FilterKind::Sensitivity, 364, 189.4711); }
-TEST(TopoptMultigrid, ReferenceDesignMbb300x100Density) { expect_reference_design(FilterKind::Density, 837, 195.305); }
+TEST(TopoptMultigrid, SameStartAsDirectOnMbb300x100Sensitivity) { expect_same_start_as_direct(FilterKind::Sensitivity); }
+TEST(TopoptMultigrid, SameStartAsDirectOnMbb300x100Density) { expect_same_start_as_direct(FilterKind::Density); }
 
 }  // namespace

@@ -1,0 +1,29 @@
+#include "cli/case_command_line.hpp"
+
+#include <iostream>
+
+#include "core/error.hpp"
+#include "input/arguments.hpp"
+
+namespace fem::cli {
+
+std::optional<CaseCommandLine> read_case_command_line(int argc, char** argv, std::string_view usage, std::string_view help) {
+    CaseCommandLine c;
+    input::Arguments args(argc, argv, {"--help", "--output", "--quiet"});
+    while (args.next()) {
+        if (args.is("--help") || args.is("-h")) {
+            std::cout << "usage: " << usage << "\n" << help;
+            return std::nullopt;
+        } else if (args.is("--output")) {
+            c.output = args.value();
+        } else if (args.is("--quiet")) {
+            c.quiet = true;
+        } else {
+            args.positional(c.case_path);
+        }
+    }
+    if (c.case_path.empty()) throw InputError("no case file given (usage: " + std::string(usage) + ")");
+    return c;
+}
+
+}  // namespace fem::cli

@@ -1,0 +1,20 @@
+#pragma once
+// The command line shared by the case-file programs: `fem-<name> CASE.toml [--output DIR] [--quiet]`
+// (fem-topopt, fem-explicit), read through input/arguments.hpp (unknown options with "did you mean",
+// a second case file refused).
+#include <optional>
+#include <string>
+#include <string_view>
+
+namespace fem::cli {
+
+struct CaseCommandLine {
+    std::string case_path, output;  // output empty: the case file's own folder
+    bool quiet = false;
+};
+
+/// Reads the arguments; prints `help` and returns nullopt for --help / -h; InputError "no case file
+/// given (usage: <usage>)" when there is none.
+std::optional<CaseCommandLine> read_case_command_line(int argc, char** argv, std::string_view usage, std::string_view help);
+
+}  // namespace fem::cli

@@ -1,0 +1,368 @@
+// Building the explicit model of a case (CaseModel: a [hand] case through lib/hand's HandModel, any
+// other part by part) and running it (run_case) into an io::RunFolder.
+#include <algorithm>
+#include <chrono>
+#include <iostream>
+#include <set>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "check/run_health.hpp"
+#include "contact/explicit_contact.hpp"
+#include "core/error.hpp"
+#include "core/progress.hpp"
+#include "deck/deck.hpp"
+#include "explicit/parallel.hpp"
+#include "explicit/tet_groups.hpp"
+#include "explicit_case/case_file.hpp"
+#include "io/atomic_file.hpp"
+#include "io/run_folder.hpp"
+#include "io/table.hpp"
+#include "mesh/finger.hpp"
+#include "mesh/gmsh.hpp"
+
+namespace fem::explicit_case {
+namespace {
+
+// "case.toml:12: [[part]] 'bar': " before a message of the model builder.
+std::string at(const ExplicitCase& c, int line, std::string_view what) { return fmt::format("{}:{}: {}: ", c.source, line, what); }
+
+// Runs f; an InputError from it gets the case file's place in front.
+template <class F>
+auto located(const std::string& where, F&& f) {
+    try {
+        return f();
+    } catch (const InputError& e) {
+        throw InputError(where + e.what());
+    }
+}
+
+// The solid blocks of a mesh file as one part `name` (lower-dimensional blocks dropped: their nodes
+// are the solids' nodes); node sets renamed "<set>-<name>" (as HandModel names its parts' sets).
+Mesh as_part(Mesh m, const std::string& name, bool keep_shells = false) {
+    Mesh out;
+    out.nodes = std::move(m.nodes);
+    for (auto& b : m.blocks)
+        if (dimension(b.shape) == 3 || (keep_shells && dimension(b.shape) == 2)) {
+            b.part = name;
+            out.blocks.push_back(std::move(b));
+        }
+    if (out.blocks.empty()) throw InputError("the mesh has no " + std::string(keep_shells ? "solid or shell" : "solid") + " elements");
+    for (auto& [set, nodes] : m.node_sets) out.node_sets[set + "-" + name] = std::move(nodes);  // as HandModel names them
+    return out;
+}
+
+Mesh part_mesh(const Part& p) {
+    Mesh m;
+    if (p.mesh == "box") {
+        m = p.element == "hex8" ? box_hex8(p.size.x(), p.size.y(), p.size.z(), p.elements[0], p.elements[1], p.elements[2], p.name)
+                                : box_tets(p.size.x(), p.size.y(), p.size.z(), p.elements[0], p.elements[1], p.elements[2],
+                                           p.element == "tet4" ? ElementShape::Tet4 : ElementShape::Tet10, p.name);
+        m.translate(p.origin);
+    } else if (p.mesh == "finger") {
+        if (!p.table_3_2_case.empty()) {
+            for (const auto& mc : finger::table_3_2_cases())
+                if (mc.id == p.table_3_2_case) m = finger::mesh_case(mc, p.name);
+        } else {
+            const hand::FingerMesh fm;
+            for (const auto& row : hand::table_4_1())
+                if (row.name == p.table_4_1_finger)
+                    m = finger::hex_finger({fm.semi_major, fm.semi_minor, row.length}, finger::mapped_cross_section(fm.section),
+                                           hand::finger_layers(fm, row.length), p.name);
+        }
+    } else if (p.mesh == "ellipsoid") {
+        m = hex_ellipsoid(p.semi_axes, p.grid, p.half, p.name);
+        m.translate(p.centre);
+        return as_part(std::move(m), p.name);
+    } else if (p.mesh == "gmsh") {
+        m = read_gmsh(p.file);
+    } else {
+        m = deck::read_deck(p.file).mesh;
+    }
+    m.translate(p.offset);
+    return as_part(std::move(m), p.name);
+}
+
+Mesh rigid_mesh(const RigidPart& r) {
+    if (r.mesh == "plate") return parallelogram_quad4(r.centre, r.u, r.v, r.segments[0], r.segments[1], r.name);
+    Mesh m;
+    if (r.mesh == "box") {
+        m = box_hex8(r.size.x(), r.size.y(), r.size.z(), r.elements[0], r.elements[1], r.elements[2], r.name);
+        m.translate(r.origin);
+    } else if (r.mesh == "drum") {
+        hand::Drum d;
+        d.centre = r.centre;
+        d.levels = r.levels;
+        m = hand::drum_mesh(d, r.drum_segments);
+    } else {
+        m = read_gmsh(r.file);
+    }
+    return as_part(std::move(m), r.name, true);
+}
+
+}  // namespace
+
+hand::Scene hand_scene(const ExplicitCase& c) {
+    if (!c.hand) throw InputError(c.source + ": the case has no [hand]");
+    hand::Scene s;
+    s.hand = c.hand->spec;
+    s.damping_frame = c.hand->damping_frame;
+    s.fingers_start_spinning = c.hand->fingers_start_spinning;
+    s.drum_segments = c.hand->drum_segments;
+    s.symmetry = c.hand->symmetry;
+    for (const Part& p : c.parts) {
+        hand::EllipsoidObject o;
+        o.part = p.name;
+        o.semi_axes = p.semi_axes;
+        o.centre = p.centre;
+        o.grid = p.grid;
+        o.half = p.half;
+        o.material = p.material;
+        o.mass = p.mass;
+        o.initial_velocity = p.initial_velocity;
+        o.alpha = p.alpha;
+        s.objects.push_back(o);
+    }
+    for (const RigidPart& r : c.rigid_parts) {
+        hand::Plate q;
+        q.part = r.name;
+        q.centre = r.centre;
+        q.u = r.u;
+        q.v = r.v;
+        q.nu = r.segments[0];
+        q.nv = r.segments[1];
+        q.depth = r.depth;
+        if (r.translation) {
+            q.direction = r.translation->first;
+            q.speed = r.translation->second;
+        } else {
+            q.speed = Curve::constant(0.0);  // at rest
+        }
+        s.plates.push_back(q);
+    }
+    for (const Contact& k : c.contacts) s.contacts.push_back({k.slave, k.master, k.friction, k.two_way, k.penalty_scale});
+    if (c.gravity) {
+        s.gravity = c.gravity->first;
+        s.gravity_curve = c.gravity->second;
+    }
+    return s;
+}
+
+CaseModel::~CaseModel() = default;
+
+CaseModel::CaseModel(const ExplicitCase& c) {
+    for (const Contact& k : c.contacts) pairs_.push_back(k.slave + " on " + k.master);
+    if (c.hand) {
+        hand_ = std::make_unique<hand::HandModel>(hand_scene(c));
+        return;
+    }
+    Mesh mesh;
+    for (const Part& p : c.parts) mesh.append(located(at(c, p.line, "[[part]] '" + p.name + "'"), [&] { return part_mesh(p); }));
+    for (const RigidPart& r : c.rigid_parts)
+        mesh.append(located(at(c, r.line, "[[rigid_part]] '" + r.name + "'"), [&] { return rigid_mesh(r); }));
+    model_ = std::make_unique<ExplicitModel>(std::move(mesh));
+    ExplicitModel& model = *model_;
+    const Mesh& msh = model.mesh();
+    std::map<std::string, std::vector<int>> part_nodes;
+    for (const Part& p : c.parts) {
+        located(at(c, p.line, "[[part]] '" + p.name + "'"), [&] {
+            std::set<ElementShape> shapes;
+            std::set<int> nodes;
+            for (int b : msh.blocks_of_part(p.name)) {
+                shapes.insert(msh.blocks[b].shape);
+                nodes.insert(msh.blocks[b].connectivity.begin(), msh.blocks[b].connectivity.end());
+            }
+            part_nodes[p.name].assign(nodes.begin(), nodes.end());
+            ElasticMaterial material = p.material;
+            if (p.mass > 0.0) {  // the density that gives the part this mass on its mesh (as HandModel does)
+                double volume = 0.0;
+                for (int b : msh.blocks_of_part(p.name))
+                    for (int e = 0; e < msh.blocks[b].size(); ++e)
+                        volume += contact::element_volume(msh.blocks[b].shape, msh.element_coordinates(b, e));
+                material = ElasticMaterial::make(material.name, material.youngs_modulus, material.poissons_ratio, p.mass / volume);
+            }
+            if (shapes == std::set{ElementShape::Hex8}) {
+                Hex8Options o;
+                o.hourglass_qm = p.hourglass_qm;
+                model.add_hex8(p.name, material, o);
+            } else if (std::all_of(shapes.begin(), shapes.end(), [](ElementShape s) { return s == ElementShape::Tet4 || s == ElementShape::Tet10; })) {
+                add_tets(model, p.name, material);
+            } else {
+                std::string names;
+                for (ElementShape s : shapes) names += (names.empty() ? "" : ", ") + std::string(to_string(s));
+                throw InputError("the explicit solver takes hex8 (one-point), tet4 or tet10 solids in a part, one family "
+                                 "per part; this one has " + names);
+            }
+            if (p.alpha > 0.0) model.set_mass_damping(p.name, p.alpha);
+            if (p.initial_velocity.norm() > 0.0) model.set_initial_velocity(part_nodes[p.name], p.initial_velocity);
+            return 0;
+        });
+    }
+    std::map<std::string, RigidMotion> motion;
+    for (const RigidPart& r : c.rigid_parts) {
+        located(at(c, r.line, "[[rigid_part]] '" + r.name + "'"), [&] {
+            model.add_rigid_part(r.name, r.motion);
+            return 0;
+        });
+        motion[r.name] = r.motion;
+    }
+    for (std::size_t k = 0; k < c.boundaries.size(); ++k) {
+        const Boundary& b = c.boundaries[k];
+        located(at(c, b.line, fmt::format("boundary[{}]", k)), [&] {
+            if (b.kind == Boundary::Kind::symmetry && b.set.empty()) {
+                model.add_symmetry_plane(b.normal, b.point);
+                return 0;
+            }
+            const std::vector<int>& nodes = msh.node_set(b.set);
+            switch (b.kind) {
+            case Boundary::Kind::fix: model.fix(nodes, Dofs::of(b.dofs)); break;
+            case Boundary::Kind::velocity:
+                for (int d = 0; d < 3; ++d) model.prescribe_velocity(nodes, d, b.value[d], b.curve);
+                break;
+            case Boundary::Kind::displacement:
+                for (int d = 0; d < 3; ++d) model.prescribe_displacement(nodes, d, b.value[d], b.curve);
+                break;
+            case Boundary::Kind::symmetry: model.add_symmetry_plane(b.normal, nodes); break;
+            case Boundary::Kind::follow: model.prescribe_motion(nodes, motion.at(b.rigid_part)); break;
+            }
+            return 0;
+        });
+    }
+    for (std::size_t k = 0; k < c.loads.size(); ++k) {
+        const Load& l = c.loads[k];
+        located(at(c, l.line, fmt::format("load[{}]", k)), [&] {
+            model.add_nodal_force(msh.node_set(l.set), l.force, l.curve);
+            return 0;
+        });
+    }
+    if (c.gravity) model.set_gravity(c.gravity->first, c.gravity->second);
+    for (std::size_t k = 0; k < c.contacts.size(); ++k) {
+        const Contact& ct = c.contacts[k];
+        located(at(c, ct.line, fmt::format("contact[{}]", k)), [&] {
+            auto material_of = [&](const std::string& part) {
+                for (const Part& p : c.parts)
+                    if (p.name == part) return p.material;
+                throw InputError("no deformable part '" + part + "'");
+            };
+            contact::ContactOptions opt;
+            opt.friction = ct.friction;
+            opt.penalty_scale = ct.penalty_scale;
+            auto slave = contact::ContactSurface::from_part(msh, ct.slave, material_of(ct.slave));
+            const auto rigid = std::find_if(c.rigid_parts.begin(), c.rigid_parts.end(), [&](const RigidPart& r) { return r.name == ct.master; });
+            if (rigid != c.rigid_parts.end()) {
+                auto master = contact::ContactSurface::rigid_part(msh, ct.master, rigid->depth);
+                contact::add_contact(model, contact::ContactInterface(pairs_[k], std::move(slave), std::move(master), opt));
+            } else {
+                opt.two_way = ct.two_way;
+                auto master = contact::ContactSurface::from_part(msh, ct.master, material_of(ct.master));
+                contact::add_contact(model, contact::ContactInterface(pairs_[k], std::move(slave), std::move(master), opt));
+            }
+            return 0;
+        });
+    }
+}
+
+ExplicitOptions solver_options(const ExplicitCase& c, const CaseModel& m, const std::filesystem::path& folder) {
+    ExplicitOptions o;
+    o.end_time = c.control.end_time;
+    o.dt_scale = c.control.dt_scale;
+    o.name = c.control.name;
+    o.history_interval = c.output.interval;
+    for (const HistoryNode& h : c.output.nodes) {
+        const std::vector<int>& nodes = located(c.source + ": output node '" + h.name + "': ", [&] { return m.mesh().node_set(h.set); });
+        if (nodes.empty()) throw InputError(c.source + ": output node '" + h.name + "': node set '" + h.set + "' is empty");
+        o.history_nodes.push_back({h.name, nodes.front()});
+    }
+    if (c.output.h5) o.h5_path = folder / "histories.h5";
+    if (c.output.vtu_interval > 0.0) {
+        o.pvd_path = folder / "results.pvd";
+        o.vtu_interval = c.output.vtu_interval;
+    }
+    o.restart_times = c.control.restart_times;
+    o.restart_interval = c.control.restart_interval;
+    o.restart_dir = folder;
+    o.restart_from = c.control.restart_from;
+    o.print_summary = false;
+    return o;
+}
+
+namespace {
+
+void write_histories(const std::filesystem::path& dir, const History& h) {
+    io::Table nodes;
+    nodes.add("time_s", h.time);
+    for (const auto& n : h.nodes) {
+        const char* axis[] = {"x", "y", "z"};
+        for (int d = 0; d < 3; ++d) {
+            std::vector<double> u, v;
+            for (const Vec3& x : n.displacement) u.push_back(x[d]);
+            for (const Vec3& x : n.velocity) v.push_back(x[d]);
+            nodes.add(fmt::format("{}_u{}_m", n.name, axis[d]), u);
+            nodes.add(fmt::format("{}_v{}_m_per_s", n.name, axis[d]), v);
+        }
+    }
+    io::write_dat(dir / "histories.dat", nodes);
+    io::Table e;
+    e.add("time_s", h.time)
+        .add("kinetic_J", h.kinetic)
+        .add("internal_J", h.internal)
+        .add("hourglass_J", h.hourglass)
+        .add("damping_J", h.damping)
+        .add("viscous_J", h.viscous)
+        .add("external_J", h.external)
+        .add("contact_J", h.contact)
+        .add("balance_error_J", h.balance);
+    io::write_dat(dir / "energies.dat", e);
+    if (!h.max_von_mises.empty()) {  // element histories: the largest von Mises stress of each part
+        io::Table vm;
+        vm.add("time_s", h.time);
+        for (const auto& [part, values] : h.max_von_mises) vm.add(part + "_max_von_mises_Pa", values);
+        io::write_dat(dir / "von_mises.dat", vm);
+    }
+}
+
+}  // namespace
+
+std::string run_case(const ExplicitCase& c, bool quiet) {
+    // The output folder is checked (writable, not in use) before the model is built; the run's files
+    // replace the previous set only when all are written.
+    io::RunFolder out(c.output.folder, "fem-explicit");
+    if (c.control.threads > 0) par::set_threads(c.control.threads);
+    CaseModel m(c);
+    ExplicitOptions opt = solver_options(c, m, out.staging());
+    opt.progress = !quiet;
+    ExplicitSolver solver(m.model(), opt);
+    RunSummary s;
+    std::string interrupted;
+    try {
+        s = solver.run();
+    } catch (const Interrupted& e) {
+        interrupted = e.what();  // the solver wrote its HDF5/VTU for the state reached, marked partial
+    }
+    const auto& dir = out.staging();
+    write_histories(dir, solver.history());
+    std::string text;
+    if (!interrupted.empty()) {
+        io::write_text_file(dir / "PARTIAL.txt", interrupted + "\n");
+        text = interrupted + "\n";
+    } else {
+        nlohmann::json j = s.to_json();
+        std::vector<std::string> problems;
+        const auto health = check::judge_run_health({{s.name, j}}, {}, c.source, problems);
+        text = s.text();
+        for (const auto& h : health) {
+            text += "health: " + h.text() + "\n";
+            j["health"] = h.to_json();
+        }
+        io::write_text_file(dir / "run.json", j.dump(2) + "\n");
+    }
+    text += "results: " + c.output.folder.string() + "/{summary.txt, run.json, histories.dat, energies.dat, von_mises.dat" +
+            (c.output.h5 ? ", histories.h5" : "") + (c.output.vtu_interval > 0 ? ", results.pvd" : "") + "}\n";
+    io::write_text_file(dir / "summary.txt", text);
+    out.commit();
+    if (!interrupted.empty()) throw Interrupted(interrupted + "; the state reached is in " + c.output.folder.string());
+    return text;
+}
+
+}  // namespace fem::explicit_case
