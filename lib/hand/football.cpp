@@ -6,9 +6,9 @@ namespace fem::hand::football {
 
 using units::mm;
 
-Curve Case::schedule(double t0) const {
+Curve Case::schedule() const {
     if (t_switch < 0) return Curve::constant(fast);
-    return Curve::steps({{0.0, fast}, {t_switch - t0, slow}}, fmt::format("Table 4-4 case {} pallet speed", id));
+    return Curve::steps({{0.0, fast}, {t_switch, slow}}, fmt::format("Table 4-4 case {} pallet speed", id));
 }
 
 std::vector<Case> table_4_4() { return {{1, -1.0}, {2, 1.38}, {3, 1.28}, {4, 1.19}, {5, 1.06}}; }
@@ -18,9 +18,7 @@ std::vector<std::pair<std::string, std::string>> neighbour_pairs() {
 }
 
 Scene scene(const Case& c, const Options& o) {
-    const double t0 = o.start;
     Scene s;
-    s.hand.drum.initial_angle = s.hand.drum.omega(0.0) * t0;
     s.hand.roll_sign = o.roll_sign;
     s.damping_frame = o.frame;
     s.gravity = Vec3(0, -9.81, 0);  // Table 4-3, -y (THESIS_CH4_5 Sec 9 item 1)
@@ -28,7 +26,7 @@ Scene scene(const Case& c, const Options& o) {
     EllipsoidObject ball;
     ball.part = "football";
     ball.semi_axes = semi_axes;
-    ball.centre = centre - Vec3(fast * t0, 0, 0);
+    ball.centre = centre;
     ball.grid = o.grid;
     ball.half = true;
     ball.material = ElasticMaterial::make("football rubber (Table 4-2)", 6.1e6, 0.49, 275.0);
@@ -39,10 +37,10 @@ Scene scene(const Case& c, const Options& o) {
     pallet.part = "pallet";
     // Top at the football's bottom (y = 50.8 - 66 mm), 200 (x) x 50 (z) mm, from the plane z = 184
     // towards the drum, centred 8 mm downstream of the football (Sec 9 item 6).
-    pallet.centre = Vec3(centre.x() - fast * t0 - pallet_offset, centre.y() - semi_axes.y(), 159 * mm);
+    pallet.centre = Vec3(centre.x() - pallet_offset, centre.y() - semi_axes.y(), 159 * mm);
     pallet.u = Vec3(200 * mm, 0, 0);
     pallet.v = Vec3(0, 0, -50 * mm);
-    pallet.speed = c.schedule(t0);
+    pallet.speed = c.schedule();
     s.plates.push_back(pallet);
     const contact::FrictionLaw mu{mu_static, mu_dynamic, o.decay};
     // Every finger against the football as one surface (one search, one stable-step bound: five
