@@ -38,9 +38,6 @@ enum class Phase { grasp, flip };
 
 struct Options {
     Phase phase = Phase::grasp;
-    double flip_sign = 1.0;        // +1: the flip about +z (Sec 9 item 8); -1 the other sense
-    EllipsoidGrid grid{};          // the football's O-grid: 512 hexahedra for the half
-    double decay = 0.0;            // c_d of Eq 2-35 (0: mu = mu_s = 0.4, the thesis's effective friction)
 };
 
 /// The scene of a phase. Grasp: object carried (v_x = -conveyor until spin_stop(), then held at 0:

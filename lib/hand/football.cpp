@@ -17,20 +17,18 @@ std::vector<std::pair<std::string, std::string>> neighbour_pairs() {
     return {{"A", "B"}, {"C", "D"}, {"D", "E"}, {"A", "C"}, {"A", "D"}, {"B", "D"}, {"B", "E"}};
 }
 
-Scene scene(const Case& c, const Options& o) {
+Scene scene(const Case& c) {
     Scene s;
-    s.hand.roll_sign = o.roll_sign;
-    s.damping_frame = o.frame;
     s.gravity = Vec3(0, -9.81, 0);  // Table 4-3, -y (THESIS_CH4_5 Sec 9 item 1)
-    if (!o.football) return s;
     EllipsoidObject ball;
     ball.part = "football";
     ball.semi_axes = semi_axes;
     ball.centre = centre;
-    ball.grid = o.grid;
+    // EllipsoidGrid's default: 512 elements, 678 nodes (Table 4-2: 512 / 677), inner block 0.4
     ball.half = true;
     ball.material = ElasticMaterial::make("football rubber (Table 4-2)", 6.1e6, 0.49, 275.0);
-    if (o.raw_weight) ball.mass = half_mass;  // density from the raw weight (Sec 4.2) instead (Sec 10 item 2)
+    // (Table 4-2's 275 kg/m^3, the FE model's input; the raw weight, mass = half_mass, was the first
+    // session's reconstruction: THESIS_CH4_5 Sec 10 item 2, study README)
     ball.initial_velocity = Vec3(-fast, 0, 0);  // riding the pallet (Sec 9 item 6)
     s.objects.push_back(ball);
     Plate pallet;
@@ -42,12 +40,10 @@ Scene scene(const Case& c, const Options& o) {
     pallet.v = Vec3(0, 0, -50 * mm);
     pallet.speed = c.schedule();
     s.plates.push_back(pallet);
-    const contact::FrictionLaw mu{mu_static, mu_dynamic, o.decay};
+    const contact::FrictionLaw mu{mu_static, mu_dynamic, 0.0};  // c_d = 0: mu = mu_s (the thesis's effective friction)
     // Every finger against the football as one surface (one search, one stable-step bound: five
     // separate pairs would each add a penalty frequency to the step).
     s.contacts.push_back({"fingers", "football", mu, true});
-    if (o.finger_pairs)
-        for (const auto& [a, b] : neighbour_pairs()) s.contacts.push_back({"finger-" + a, "finger-" + b, mu, true});
     s.contacts.push_back({"football", "pallet", mu, false});
     s.contacts.push_back({"football", "drum", mu, false});
     return s;

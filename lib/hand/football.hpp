@@ -32,23 +32,10 @@ struct Case {
 };
 std::vector<Case> table_4_4();
 
-struct Options {
-    DampingFrame frame = DampingFrame::absolute;
-    double roll_sign = 1.0;        // R_x sense (HandSpec::roll_sign): the mirror case is -1
-    double decay = 0.0;            // c_d of Eq 2-35 (0: mu = mu_s, the thesis's effective friction)
-    bool football = true;          // false: the hand alone
-    bool finger_pairs = false;     // finger-finger contact pairs (neighbour_pairs())
-    EllipsoidGrid grid{};          // 512 elements, 678 nodes (Table 4-2: 512 / 677), inner block 0.4
-    /// false: the football's density is Table 4-2's 275 kg/m^3, the FE model's input (0.30 kg for the
-    /// half mesh); true: the raw weight 0.425 kg over the mesh volume (193 kg/m^3), the first
-    /// session's reconstruction (THESIS_CH4_5 Sec 10 item 2; study README).
-    bool raw_weight = false;
-};
-
 /// The fingers whose sweeps overlap: neighbours on a level, and upper over lower within 22.5 deg.
 std::vector<std::pair<std::string, std::string>> neighbour_pairs();
 
 /// The scene of case c from t = 0 (hand::seen_from gives it from a later start).
-Scene scene(const Case& c, const Options& o = {});
+Scene scene(const Case& c);
 
 }  // namespace fem::hand::football
