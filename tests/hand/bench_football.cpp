@@ -7,8 +7,8 @@
 //   BM_FootballCase4Window: 60 ms of its contact window (1.04-1.10 s: the first finger touches the
 //     football at ~1.06 s); seconds.
 //   BM_FootballCase4Full: the whole case, t = 0 to the thesis's 3 s (issue 11: "a benchmark in make
-//     bench times one full football case"); minutes (studies/football_sweep/README.md "Cost" gives a
-//     measured time). Only this one: build/bench/bench_football --benchmark_filter=Full
+//     bench times one full football case"); 470 s of CPU, 817,938 steps (studies/football_sweep/
+//     README.md "Files and switches"). Only this one: build/bench/bench_football --benchmark_filter=Full
 // Counters: element-cycles per second of the whole solver step and the contact share of the step time.
 #include <benchmark/benchmark.h>
 
