@@ -29,9 +29,10 @@
 
 namespace fem::modal {
 
-/// The element kernel of deck type `type` (table above) for material m; `thickness` for shells.
-/// `options.mass` and `options.tet10_mass_rule` apply where the type has a choice.
-ElementKernel element_kernel(std::string_view type, const ElasticMaterial& m, double thickness, const SolidOptions& options);
+/// Adds block `block` of `model` as elements of deck type `type` (table above) of material m;
+/// `thickness` for shells. `options.mass` and the tet mass rules apply where the type has a choice.
+void add_element_block(Model& model, int block, std::string_view type, const ElasticMaterial& m, double thickness,
+                       const SolidOptions& options);
 /// DOFs per node of a deck type: 6 for shells, 3 for solids.
 int dofs_per_node(std::string_view type);
 /// The deck types that fit a mesh shape (for case files: hex8 -> C3D8I, C3D8; the first is the default).

@@ -357,8 +357,9 @@ void write_results(const std::filesystem::path& dir, const Mesh& mesh, const Ass
 
 std::string summary(const AssembledSystem& system, const ModalResult& r) {
     std::ostringstream s;
-    s << fmt::format("modal: {} nodes, {} DOFs ({} fixed, {} coupled out), {} equations\n", system.dofs.node_count(),
-                     system.dofs.size(), system.reduction.fixed, system.reduction.coupled, system.size());
+    s << fmt::format("modal: {} nodes, {} DOFs ({} fixed, {} coupled out), {} equations{}\n", system.dofs.node_count(),
+                     system.dofs.size(), system.reduction.fixed, system.reduction.coupled, system.size(),
+                     system.internal_dofs > 0 ? fmt::format(" ({} of them element-internal)", system.internal_dofs) : "");
     s << fmt::format("  K nonzeros (lower) {}, factor nonzeros {}, shift {:g} rad^2/s^2\n", system.stiffness.nonZeros(),
                      r.factor_nonzeros, r.shift);
     s << fmt::format("  factorization ({}) {:.3f} s, Lanczos {:.3f} s ({} restarts, {} solves)\n", r.factorization, r.factor_seconds, r.solve_seconds,
