@@ -89,7 +89,13 @@ Result run_case(const Case& c, double finger_h, const std::filesystem::path& out
     Result r;
     r.c = c;
     const auto rubber = ElasticMaterial::make("rubber", c.e_finger, 0.49, 1000);
-    Mesh finger = fem::finger::hex_finger({12e-3, 8.45e-3, kFingerLength}, finger_h, "finger");
+    // ROTFINGER_MAPPED=<n>: the single mapped n x n cross-section (the thesis's Case A layout for
+    // n = 5: Table 3-5's 1275 elements are 5 x 5 x 51) with round(L / h) layers, instead of the O-grid.
+    const fem::finger::EllipticCylinder shape{12e-3, 8.45e-3, kFingerLength};
+    Mesh finger = std::getenv("ROTFINGER_MAPPED")
+                      ? fem::finger::hex_finger(shape, fem::finger::mapped_cross_section(std::atoi(std::getenv("ROTFINGER_MAPPED"))),
+                                                static_cast<int>(std::lround(kFingerLength / finger_h)), "finger")
+                      : fem::finger::hex_finger(shape, finger_h, "finger");
     // Leading (+y local: minor axis, becomes +tangential) and trailing edges: per layer the nodes
     // with the largest and smallest local y.
     std::map<long, std::pair<int, int>> edges;  // layer key -> (max x node, min x node)
@@ -120,6 +126,8 @@ Result run_case(const Case& c, double finger_h, const std::filesystem::path& out
                            RigidMotion::rotation(Vec3::Zero(), Vec3::UnitZ(), Curve::constant(kOmega * (1 + perturb))));
     ContactOptions co;
     co.friction = {0.6, 0.6, 0.0};  // Table 3-6
+    // ROTFINGER_TWO_WAY=1: symmetric contact (the object's nodes against the finger's faces too).
+    co.two_way = std::getenv("ROTFINGER_TWO_WAY") != nullptr;
     std::vector<int> sensor;
     ElasticMaterial al = ElasticMaterial::make("object", c.e_object > 0 ? c.e_object : 69e9, 0.33, 2700);
     ContactInterface* ci = nullptr;
@@ -303,7 +311,8 @@ int main(int argc, char** argv) {
     return check::run_study("rotating_finger_contact", argc, argv, [](check::Study& study) {
         const auto& out = study.results_dir();
         // Development switches: ROTFINGER_ONLY=<case> runs one case without checks; ROTFINGER_END=<s>
-        // caps the simulated time; ROTFINGER_H=<m> sets the finger element length (convergence runs).
+        // caps the simulated time; ROTFINGER_H=<m> sets the finger element length (convergence runs);
+        // ROTFINGER_MAPPED=<n> meshes the finger's section as one mapped n x n block (run_case).
         const double h = std::getenv("ROTFINGER_H") ? std::atof(std::getenv("ROTFINGER_H")) : 6e-3;
         const double end = std::getenv("ROTFINGER_END") ? std::atof(std::getenv("ROTFINGER_END")) : 3.0;
         // Every case with the deformable object on its sensor (Table 3-5: the object is a solid); the
