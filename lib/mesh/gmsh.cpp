@@ -5,6 +5,7 @@
 #include <fcntl.h>
 #include <sys/prctl.h>
 #include <sys/resource.h>
+#include <sys/socket.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -354,23 +355,35 @@ Mesh mesh_from_copy(const GmshModelCopy& model, const std::string& source) {
 }
 
 // Gmsh reads the file into its (cleared) model; returns a copy of it. Runs in the reading child.
-GmshModelCopy copy_of_gmsh_file(const std::filesystem::path& path, const std::string& where) {
+// `read_on` is cleared when a C++ exception ended Gmsh's read (its state may be half-changed).
+GmshModelCopy copy_of_gmsh_file(const std::filesystem::path& path, const std::string& where, bool& read_on) {
     gmsh::clear();
     // Gmsh reads some malformed files with a warning only: a node or element id given twice is
     // "skipped" (one of the two silently wins, and the mesh is then wrong in a way that shows up
     // much later, as an inverted element). Such warnings are errors here.
     gmsh::option::setNumber("General.Verbosity", 2);  // warnings reach the logger (not the terminal)
     gmsh::logger::start();
+    struct Quiet {  // the reader reads on: the next file's log starts empty, and Gmsh is quiet again
+        ~Quiet() {
+            try {
+                gmsh::logger::stop();
+                gmsh::option::setNumber("General.Verbosity", 0);
+            } catch (...) {  // a destructor must not throw
+            }
+        }
+    } quiet_afterwards;
     try {
         // merge into the cleared model rather than open: in Gmsh 4.8 a failed open() leaves a
-        // process-wide "busy" lock behind (every later open then reads nothing), which mattered
-        // while files were read in-process (found by tests/fuzz/fuzz_gmsh).
+        // process-wide "busy" lock behind, and every later open in the process reads nothing
+        // (found by tests/fuzz/fuzz_gmsh).
         try {
             gmsh::merge(path.string());
         } catch (const std::bad_alloc&) {
+            read_on = false;
             throw InputError(where + " is malformed: Gmsh ran out of memory reading it (a count in the file larger than "
                                      "this machine can hold?)");
         } catch (const std::exception& e) {  // e.g. std::length_error for a count near 2^64 (found by fuzz_gmsh)
+            read_on = false;
             throw InputError(where + " is malformed: Gmsh's reader failed with \"" + e.what() + "\" (a count in the file "
                                      "too large?)");
         }
@@ -396,32 +409,67 @@ GmshModelCopy copy_of_gmsh_file(const std::filesystem::path& path, const std::st
     }
 }
 
+// The reader process and this one talk through a socket pair (send with MSG_NOSIGNAL: a reader that
+// died must not kill this process with SIGPIPE), in messages of a length and that many bytes. A
+// request is the file's path and its name for messages; a reply whether the reader leaves after it
+// (kLeaving or kStaying), a kind byte, then the model or the message of the error.
+constexpr char kModel = 'M', kInputError = 'I', kOtherError = 'E';
+constexpr char kLeaving = 'L', kStaying = 'S';
+
+bool send_message(int fd, const std::string& bytes) {
+    const std::uint64_t length = bytes.size();
+    std::string message(reinterpret_cast<const char*>(&length), sizeof length);
+    message += bytes;
+    std::string_view rest = message;
+    while (!rest.empty()) {
+        const ssize_t n = ::send(fd, rest.data(), rest.size(), MSG_NOSIGNAL);
+        if (n < 0 && errno == EINTR) continue;
+        if (n <= 0) return false;
+        rest.remove_prefix(static_cast<std::size_t>(n));
+    }
+    return true;
+}
+
+bool receive_exactly(int fd, char* to, std::size_t n) {
+    while (n > 0) {
+        const ssize_t got = ::read(fd, to, n);
+        if (got < 0 && errno == EINTR) continue;
+        if (got <= 0) return false;
+        to += got;
+        n -= static_cast<std::size_t>(got);
+    }
+    return true;
+}
+
+bool receive_message(int fd, std::string& bytes) {
+    std::uint64_t length = 0;
+    if (!receive_exactly(fd, reinterpret_cast<char*>(&length), sizeof length)) return false;
+    bytes.resize(length);
+    return receive_exactly(fd, bytes.data(), bytes.size());
+}
+
 // Set by a sanitizer runtime (ASan, UBSan, libFuzzer's driver); weak, so null in a plain build.
 extern "C" void __sanitizer_set_death_callback(void (*callback)()) __attribute__((weak));
 
-// What the reading child sends: a kind byte, then the model or the message.
-constexpr char kModel = 'M', kInputError = 'I', kOtherError = 'E';
+// Reads this many files at most, then leaves to a fresh fork: libgmsh keeps some allocations of each
+// read until exit, and a long fuzzing run would otherwise grow the reader without bound.
+constexpr int kReadsPerReader = 1000;
 
-void write_all(int fd, std::string_view bytes) {
-    while (!bytes.empty()) {
-        const ssize_t n = ::write(fd, bytes.data(), bytes.size());
-        if (n < 0 && errno == EINTR) continue;
-        if (n <= 0) return;  // the parent went away; nothing to tell it
-        bytes.remove_prefix(static_cast<std::size_t>(n));
-    }
-}
-
-// The child's whole life: read the file with Gmsh, send the result down `fd`, _exit. A crash inside
-// Gmsh must end this process by its signal and nothing else, which the parent then reports:
+// The reader process's whole life: read the requested files with Gmsh and reply, until this process
+// closes its end (or exits). A crash inside Gmsh must end it by its signal and nothing else, which
+// this process then reports:
 //   - the default actions are restored for the signals a crash raises, and a sanitizer's "death
 //     callback" is removed: under libFuzzer both would save the input as a crash of the fuzz target;
 //   - stderr goes to /dev/null: Gmsh prints nothing there (General.Terminal = 0), and what a
 //     sanitizer would print (say, libgmsh asking for 2^51 bytes for a count in a malformed file,
-//     which AddressSanitizer refuses with a report and an abort) is the crash the parent reports;
-//   - no core file; the child dies with its parent (a fuzzer's timeout kills the parent);
+//     which AddressSanitizer refuses with a report and an abort) is the crash this process reports;
+//   - no core file; it dies with the thread that forked it (a fuzzer's timeout kills the fuzzer);
 //   - _exit, not exit: no atexit handlers or static destructors (Gmsh's, the sanitizers' leak
-//     check) and no flush of stdio buffers copied from the parent.
-[[noreturn]] void read_in_child(const std::filesystem::path& path, const std::string& where, int fd, pid_t parent) {
+//     check) and no flush of stdio buffers copied from this process.
+// A read that a C++ exception ended inside Gmsh (std::length_error, std::bad_alloc) may leave Gmsh's
+// state half-changed, so the reader leaves after replying to it; after Gmsh's own errors (which it
+// cleans up after: ReadGmsh.AFailedReadDoesNotSpoilTheNextOne) and ours it reads on.
+[[noreturn]] void serve_reads(int fd, pid_t parent) {
     for (int signal : {SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT}) std::signal(signal, SIG_DFL);
     if (__sanitizer_set_death_callback) __sanitizer_set_death_callback(nullptr);
     const int null_fd = ::open("/dev/null", O_WRONLY);
@@ -430,33 +478,115 @@ void write_all(int fd, std::string_view bytes) {
     ::setrlimit(RLIMIT_CORE, &no_core);
     ::prctl(PR_SET_PDEATHSIG, SIGKILL);
     if (::getppid() != parent) ::_exit(1);
-    Packer out;
-    char kind = kModel;
-    try {
-        // The parent held the session lock while forking, so Gmsh's state here is consistent; the
-        // lock itself is the parent thread's and must not be taken here. Gmsh is started if the
-        // parent had not, and never finalized: the process ends with _exit.
-        if (gmsh_depth == 0) start_gmsh();
-        GmshModelCopy model = copy_of_gmsh_file(path, where);
-        out(kind, model);
-    } catch (const InputError& e) {
-        out.bytes.clear();
-        kind = kInputError;
-        std::string message = e.what();
-        out(kind, message);
-    } catch (const std::exception& e) {
-        out.bytes.clear();
-        kind = kOtherError;
-        std::string message = where + ": " + e.what();
-        out(kind, message);
-    } catch (...) {
-        out.bytes.clear();
-        kind = kOtherError;
-        std::string message = where + ": an unknown error in Gmsh's reader";
-        out(kind, message);
+    // The parent held the session lock while forking, so Gmsh's state here is consistent; the lock
+    // itself is the parent thread's and is never taken here. Gmsh is started if the parent had not,
+    // and never finalized.
+    bool started = gmsh_depth > 0;
+    std::string request;
+    for (int reads = 1; receive_message(fd, request); ++reads) {
+        std::string path, where;
+        Unpacker in(request);
+        in(path, where);
+        Packer out;
+        char kind = kModel;
+        bool read_on = true;
+        try {
+            if (!started) start_gmsh();
+            started = true;
+            GmshModelCopy model = copy_of_gmsh_file(path, where, read_on);
+            out(kind, model);
+        } catch (const InputError& e) {
+            out.bytes.clear();
+            kind = kInputError;
+            std::string message = e.what();
+            out(kind, message);
+        } catch (const std::exception& e) {
+            out.bytes.clear();
+            kind = kOtherError;
+            std::string message = where + ": " + e.what();
+            out(kind, message);
+            read_on = false;
+        } catch (...) {
+            out.bytes.clear();
+            kind = kOtherError;
+            std::string message = where + ": an unknown error in Gmsh's reader";
+            out(kind, message);
+            read_on = false;
+        }
+        const bool leaving = !read_on || reads == kReadsPerReader;
+        if (!send_message(fd, (leaving ? kLeaving : kStaying) + out.bytes) || leaving) break;
     }
-    write_all(fd, out.bytes);
     ::_exit(0);
+}
+
+// The reader process of this process (guarded by gmsh_mutex()).
+struct ReaderProcess {
+    pid_t pid = -1;
+    pid_t owner = -1;  // the process that forked it: a fork of that process must not use it
+    int fd = -1;
+} reader;
+
+void forget_reader() {
+    if (reader.fd >= 0) ::close(reader.fd);
+    reader = ReaderProcess{};
+}
+
+// Forks the reader process (the caller holds gmsh_mutex(), so no other thread is inside Gmsh while
+// the reader takes its copy of Gmsh's state; stdio is flushed so that nothing buffered is copied).
+void start_reader(const std::string& where) {
+    int fds[2];
+    if (::socketpair(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0, fds) != 0)
+        throw std::runtime_error(where + ": cannot create a socket pair for the Gmsh reader: " + std::strerror(errno));
+    std::fflush(nullptr);
+    const pid_t parent = ::getpid();
+    const pid_t child = ::fork();
+    if (child == 0) {
+        ::close(fds[0]);
+        serve_reads(fds[1], parent);
+    }
+    const int fork_errno = errno;
+    ::close(fds[1]);
+    if (child < 0) {
+        ::close(fds[0]);
+        throw std::runtime_error(where + ": cannot start the Gmsh reader process: " + std::strerror(fork_errno));
+    }
+    reader = ReaderProcess{child, parent, fds[0]};
+}
+
+// Has the reader process read `path` and returns its reply; throws InputError when Gmsh crashed on it.
+std::string reply_of_reader(const std::filesystem::path& path, const std::string& where) {
+    std::lock_guard<std::recursive_mutex> lock(gmsh_mutex());
+    if (reader.pid > 0 && reader.owner != ::getpid()) forget_reader();  // the reader of the process we were forked from
+    if (reader.pid > 0 && ::waitpid(reader.pid, nullptr, WNOHANG) != 0)
+        forget_reader();  // killed between reads (it dies with the thread that forked it)
+    if (reader.pid < 0) start_reader(where);
+    Packer request;
+    std::string path_string = path.string(), name = where;
+    request(path_string, name);
+    std::string reply;
+    if (send_message(reader.fd, request.bytes) && receive_message(reader.fd, reply) && !reply.empty()) {
+        if (reply[0] == kLeaving) {
+            const pid_t pid = reader.pid;
+            forget_reader();
+            while (::waitpid(pid, nullptr, 0) < 0 && errno == EINTR) {
+            }
+        }
+        return reply.substr(1);
+    }
+
+    // No reply: the reader died reading this file.
+    const pid_t pid = reader.pid;
+    forget_reader();
+    int status = 0;
+    while (::waitpid(pid, &status, 0) < 0)
+        if (errno != EINTR) throw std::runtime_error(where + ": lost the Gmsh reader process: " + std::strerror(errno));
+    if (WIFSIGNALED(status)) {
+        const int signal = WTERMSIG(status);
+        throw InputError("Gmsh crashed reading '" + path.string() + "' (signal " + std::to_string(signal) + ", " +
+                         ::strsignal(signal) + "): the file is malformed");
+    }
+    throw std::runtime_error(where + ": the Gmsh reader process ended without an answer (exit status " +
+                             std::to_string(WIFEXITED(status) ? WEXITSTATUS(status) : -1) + ")");
 }
 }  // namespace
 
@@ -485,16 +615,17 @@ GmshSession::~GmshSession() {
 
 Mesh mesh_from_gmsh_model(const std::string& source) { return mesh_from_copy(copy_of_gmsh_model(), source); }
 
-// Gmsh reads the file in a child process (fork), which sends a copy of the model back through a pipe;
-// this process converts and validates it. Why: libgmsh 4.8's readers crash on some malformed files
-// (three found by tests/fuzz/fuzz_gmsh: two through $PhysicalNames, caught by the pre-check above, and
-// one in _associateEntityWithMeshVertices from _readMSH2 on a malformed MSH 2.2 $Elements section),
-// and pre-checks cannot follow every path inside Gmsh. In a child a crash is the child's death by a
-// signal, which becomes an InputError naming the file; Gmsh's allocations, leaks and global state
-// (a failed read's "busy" lock) go with the child too. libgmsh stays the reader, rather than a parser
-// of our own, because it reads every format a user's Gmsh writes (2.2 and 4.1, ASCII and binary, with
-// its entity and partition sections) and the in-process meshers need it anyway. The cost is a fork
-// per file: about <FORK_COST> (measured with the fuzz target).
+// Gmsh reads the file in a reader process (a fork of this one, serve_reads), which sends a copy of
+// the model back; this process converts and validates it. Why: libgmsh 4.8's readers crash on some
+// malformed files (three found by tests/fuzz/fuzz_gmsh: two through $PhysicalNames, refused with a
+// better message by the pre-check above, and a SIGSEGV in _associateEntityWithMeshVertices from
+// _readMSH2 on a malformed MSH 2.2 $Elements section), and pre-checks cannot follow every path inside
+// Gmsh. In a separate process a crash is that process's death by a signal, which becomes an
+// InputError naming the file; Gmsh's leaks and global state stay there too. libgmsh stays the reader,
+// rather than a parser of our own, because it reads every format a user's Gmsh writes (2.2 and 4.1,
+// ASCII and binary, entities, partitions, periodic sections) and the in-process meshers need it
+// anyway. One reader process serves the reads of this process, not a fork per file: under
+// AddressSanitizer a fork of the fuzz target cost ~5x its whole execution (<FORK_COST>).
 Mesh read_gmsh(const std::filesystem::path& path) {
     const std::string where = "Gmsh mesh file '" + path.string() + "'";
     std::error_code ec;
@@ -507,50 +638,7 @@ Mesh read_gmsh(const std::filesystem::path& path) {
 
     check_physical_name_dimensions(path, where);
 
-    int pipe_fds[2];
-    if (::pipe2(pipe_fds, O_CLOEXEC) != 0)
-        throw std::runtime_error(where + ": cannot create a pipe for the Gmsh reader: " + std::strerror(errno));
-    pid_t child = -1;
-    int fork_errno = 0;
-    {
-        // No other thread inside Gmsh while the child takes its copy of Gmsh's state; stdio flushed
-        // so that nothing buffered is duplicated.
-        std::lock_guard<std::recursive_mutex> lock(gmsh_mutex());
-        std::fflush(nullptr);
-        const pid_t parent = ::getpid();
-        child = ::fork();
-        fork_errno = errno;
-        if (child == 0) {
-            ::close(pipe_fds[0]);
-            read_in_child(path, where, pipe_fds[1], parent);
-        }
-    }
-    ::close(pipe_fds[1]);
-    if (child < 0) {
-        ::close(pipe_fds[0]);
-        throw std::runtime_error(where + ": cannot start the Gmsh reader process: " + std::strerror(fork_errno));
-    }
-    std::string reply;
-    char buffer[1 << 16];
-    for (;;) {
-        const ssize_t n = ::read(pipe_fds[0], buffer, sizeof buffer);
-        if (n < 0 && errno == EINTR) continue;
-        if (n <= 0) break;
-        reply.append(buffer, static_cast<std::size_t>(n));
-    }
-    ::close(pipe_fds[0]);
-    int status = 0;
-    while (::waitpid(child, &status, 0) < 0)
-        if (errno != EINTR) throw std::runtime_error(where + ": lost the Gmsh reader process: " + std::strerror(errno));
-    if (WIFSIGNALED(status)) {
-        const int signal = WTERMSIG(status);
-        throw InputError("Gmsh crashed reading '" + path.string() + "' (signal " + std::to_string(signal) + ", " +
-                         ::strsignal(signal) + "): the file is malformed");
-    }
-    if (!WIFEXITED(status) || WEXITSTATUS(status) != 0 || reply.empty())
-        throw std::runtime_error(where + ": the Gmsh reader process ended without an answer (exit status " +
-                                 std::to_string(WIFEXITED(status) ? WEXITSTATUS(status) : -1) + ")");
-
+    const std::string reply = reply_of_reader(path, where);
     Unpacker in(reply);
     char kind = 0;
     in(kind);

@@ -276,9 +276,20 @@ TEST(ReadGmsh, AFailedReadDoesNotSpoilTheNextOne) {
     write_text(dir.file("tet.msh"), tet);
     write_text(dir.file("short.msh"), "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n4\n1 0 0 0\n2 1 0 0\n3 0 1 0\n"
                                       "4 0 0 1\n$EndNodes\n$Elements\n1\n1 4 2 1 1 1 2\n$EndElements\n");
+    write_text(dir.file("twice.msh"), "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n5\n1 0 0 0\n2 1 0 0\n3 0 1 0\n"
+                                      "4 0 0 1\n4 0 0 2\n$EndNodes\n$Elements\n1\n1 4 2 1 1 1 2 3 4\n$EndElements\n");
     GmshSession outer;  // as a program that reads several files would hold
     EXPECT_EQ(read_gmsh(dir.file("tet.msh")).element_count(), 1);
     EXPECT_THROW(read_gmsh(dir.file("short.msh")), InputError);
+    EXPECT_EQ(read_gmsh(dir.file("tet.msh")).element_count(), 1);
+    // One reader process reads them all: Gmsh's log of one file must not reach the next one's message.
+    EXPECT_THROW(read_gmsh(dir.file("twice.msh")), InputError);
+    try {
+        read_gmsh(dir.file("short.msh"));
+        ADD_FAILURE() << "no error";
+    } catch (const InputError& e) {
+        EXPECT_EQ(std::string(e.what()).find("uplicate"), std::string::npos) << e.what();
+    }
     EXPECT_EQ(read_gmsh(dir.file("tet.msh")).element_count(), 1);
 }
 
