@@ -3,6 +3,7 @@
 #include <gmsh.h>
 
 #include <fcntl.h>
+#include <poll.h>
 #include <sys/prctl.h>
 #include <sys/resource.h>
 #include <sys/socket.h>
@@ -11,18 +12,21 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <chrono>
 #include <csignal>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <iomanip>
 #include <iterator>
 #include <map>
 #include <mutex>
 #include <new>
 #include <optional>
 #include <set>
+#include <sstream>
 #include <string_view>
 #include <type_traits>
 #include <unordered_map>
@@ -430,22 +434,35 @@ bool send_message(int fd, const std::string& bytes) {
     return true;
 }
 
-bool receive_exactly(int fd, char* to, std::size_t n) {
+// Reading from the other process: ok, closed (it died or left), or out of time (the deadline passed).
+enum class Received { ok, closed, out_of_time };
+using Deadline = std::optional<std::chrono::steady_clock::time_point>;
+
+Received receive_exactly(int fd, char* to, std::size_t n, Deadline deadline) {
     while (n > 0) {
+        if (deadline) {
+            const auto left = std::chrono::ceil<std::chrono::milliseconds>(*deadline - std::chrono::steady_clock::now());
+            if (left.count() <= 0) return Received::out_of_time;
+            pollfd wait_for{fd, POLLIN, 0};
+            const int ready = ::poll(&wait_for, 1, static_cast<int>(std::min<long long>(left.count(), 1 << 30)));
+            if (ready < 0 && errno != EINTR) return Received::closed;
+            if (ready <= 0) continue;
+        }
         const ssize_t got = ::read(fd, to, n);
         if (got < 0 && errno == EINTR) continue;
-        if (got <= 0) return false;
+        if (got <= 0) return Received::closed;
         to += got;
         n -= static_cast<std::size_t>(got);
     }
-    return true;
+    return Received::ok;
 }
 
-bool receive_message(int fd, std::string& bytes) {
+Received receive_message(int fd, std::string& bytes, Deadline deadline = std::nullopt) {
     std::uint64_t length = 0;
-    if (!receive_exactly(fd, reinterpret_cast<char*>(&length), sizeof length)) return false;
+    if (Received r = receive_exactly(fd, reinterpret_cast<char*>(&length), sizeof length, deadline); r != Received::ok)
+        return r;
     bytes.resize(length);
-    return receive_exactly(fd, bytes.data(), bytes.size());
+    return receive_exactly(fd, bytes.data(), bytes.size(), deadline);
 }
 
 // Set by a sanitizer runtime (ASan, UBSan, libFuzzer's driver); weak, so null in a plain build.
@@ -483,7 +500,7 @@ constexpr int kReadsPerReader = 1000;
     // and never finalized.
     bool started = gmsh_depth > 0;
     std::string request;
-    for (int reads = 1; receive_message(fd, request); ++reads) {
+    for (int reads = 1; receive_message(fd, request) == Received::ok; ++reads) {
         std::string path, where;
         Unpacker in(request);
         in(path, where);
@@ -518,6 +535,12 @@ constexpr int kReadsPerReader = 1000;
     }
     ::_exit(0);
 }
+
+// How long Gmsh may take to read a file (set_gmsh_read_time_limit; guarded by gmsh_mutex()).
+struct ReadTimeLimit {
+    double base_seconds = 30;
+    double seconds_per_megabyte = 10;
+} read_time_limit;
 
 // The reader process of this process (guarded by gmsh_mutex()).
 struct ReaderProcess {
@@ -563,8 +586,15 @@ std::string reply_of_reader(const std::filesystem::path& path, const std::string
     Packer request;
     std::string path_string = path.string(), name = where;
     request(path_string, name);
+    std::error_code ec;
+    const double megabytes = static_cast<double>(std::filesystem::file_size(path, ec)) / 1e6;
+    const double seconds = read_time_limit.base_seconds + read_time_limit.seconds_per_megabyte * megabytes;
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                                                 std::chrono::duration<double>(seconds));
     std::string reply;
-    if (send_message(reader.fd, request.bytes) && receive_message(reader.fd, reply) && !reply.empty()) {
+    const Received received = send_message(reader.fd, request.bytes) ? receive_message(reader.fd, reply, deadline)
+                                                                     : Received::closed;
+    if (received == Received::ok && !reply.empty()) {
         if (reply[0] == kLeaving) {
             const pid_t pid = reader.pid;
             forget_reader();
@@ -572,6 +602,18 @@ std::string reply_of_reader(const std::filesystem::path& path, const std::string
             }
         }
         return reply.substr(1);
+    }
+    if (received == Received::out_of_time) {
+        const pid_t pid = reader.pid;
+        forget_reader();
+        ::kill(pid, SIGKILL);
+        while (::waitpid(pid, nullptr, 0) < 0 && errno == EINTR) {
+        }
+        std::ostringstream limit;
+        limit << std::setprecision(3) << seconds;
+        throw InputError(where + " is malformed: Gmsh did not finish reading it in " + limit.str() + " s (" +
+                         std::to_string(std::filesystem::file_size(path, ec)) +
+                         " bytes; a count in the file far larger than the data it holds?)");
     }
 
     // No reply: the reader died reading this file.
@@ -611,6 +653,11 @@ GmshSession::~GmshSession() {
         }
     }
     gmsh_mutex().unlock();
+}
+
+void set_gmsh_read_time_limit(double base_seconds, double seconds_per_megabyte) {
+    std::lock_guard<std::recursive_mutex> lock(gmsh_mutex());
+    read_time_limit = {base_seconds, seconds_per_megabyte};
 }
 
 Mesh mesh_from_gmsh_model(const std::string& source) { return mesh_from_copy(copy_of_gmsh_model(), source); }

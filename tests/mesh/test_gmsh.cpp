@@ -317,3 +317,25 @@ TEST(ReadGmsh, ACrashInsideGmshIsAnInputError) {
                                     "4 0 0 1\n$EndNodes\n$Elements\n1\n1 4 2 1 1 1 2 3 4\n$EndElements\n");
     EXPECT_EQ(read_gmsh(dir.file("tet.msh")).element_count(), 1);
 }
+
+// A 1 kB binary MSH 4.1 file on which libgmsh 4.8 spends minutes (a huge count; found by
+// tests/fuzz/fuzz_gmsh, also in its corpus): past the time limit the reader process is killed and the
+// file refused. (Limit shortened for the test; the default is 30 s + 10 s/MB.)
+TEST(ReadGmsh, AReadThatTakesTooLongIsAnInputError) {
+    const fs::path slow = "tests/fuzz/corpus/gmsh/timeout-msh4-binary-count.msh";
+    ASSERT_TRUE(fs::exists(slow));
+    set_gmsh_read_time_limit(0.5, 0);
+    try {
+        read_gmsh(slow);
+        ADD_FAILURE() << "no error";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("timeout-msh4-binary-count.msh' is malformed: Gmsh did not finish reading it in "
+                                             "0.5 s (1171 bytes"),
+                  std::string::npos)
+            << e.what();
+    }
+    errno = 0;
+    EXPECT_EQ(::waitpid(-1, nullptr, WNOHANG), -1);  // the reader was killed and reaped
+    EXPECT_EQ(errno, ECHILD);
+    set_gmsh_read_time_limit(30, 10);
+}
