@@ -477,6 +477,8 @@ constexpr int kReadsPerReader = 1000;
 // this process then reports:
 //   - the default actions are restored for the signals a crash raises, and a sanitizer's "death
 //     callback" is removed: under libFuzzer both would save the input as a crash of the fuzz target;
+//     SIGINT is ignored: a Ctrl-C reaches the whole process group, and the handler inherited from
+//     the parent (libFuzzer's: exit 72) would end the reader mid-read, misreported as a bad file;
 //   - stderr goes to /dev/null: Gmsh prints nothing there (General.Terminal = 0), and what a
 //     sanitizer would print (say, libgmsh asking for 2^51 bytes for a count in a malformed file,
 //     which AddressSanitizer refuses with a report and an abort) is the crash this process reports;
@@ -487,7 +489,8 @@ constexpr int kReadsPerReader = 1000;
 // state half-changed, so the reader leaves after replying to it; after Gmsh's own errors (which it
 // cleans up after: ReadGmsh.AFailedReadDoesNotSpoilTheNextOne) and ours it reads on.
 [[noreturn]] void serve_reads(int fd, pid_t parent) {
-    for (int signal : {SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT}) std::signal(signal, SIG_DFL);
+    for (int signal : {SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT, SIGTERM, SIGUSR1, SIGUSR2}) std::signal(signal, SIG_DFL);
+    std::signal(SIGINT, SIG_IGN);  // Ctrl-C is the parent's to handle (a program's partial write, libFuzzer's stop)
     if (__sanitizer_set_death_callback) __sanitizer_set_death_callback(nullptr);
     const int null_fd = ::open("/dev/null", O_WRONLY);
     if (null_fd >= 0) ::dup2(null_fd, STDERR_FILENO);
