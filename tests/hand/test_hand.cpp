@@ -264,3 +264,110 @@ TEST(Hand, SeenFromMovesTheSceneToT0) {
     EXPECT_NO_THROW(seen_from(carried, 1.0));
     EXPECT_THROW(seen_from(carried, 1.6), InputError);  // the carriage stopped at 1.5 s
 }
+
+namespace {
+// The run summary's record of contact pair `name`.
+const InterfaceSummary& interface(const RunSummary& sum, const std::string& name) {
+    std::string names;
+    for (const auto& c : sum.interfaces) {
+        if (c.name == name) return c;
+        names += " '" + c.name + "'";
+    }
+    throw InputError("no contact interface " + name + "; there are" + names);
+}
+}  // namespace
+
+// Finger against finger (a [[contact]] pair of two fingers, CASE_FILE.md): two 3-inch fingers side by
+// side on a stopped drum, finger B swung towards A about the drum axis (its roots held). With the
+// pair the fingers stay apart (penetration below 0.2 of the element, the studies' limit); with the
+// same pair at a penalty 1e-6 of it (no force, the same measure of penetration) B passes into A.
+TEST(Hand, FingerPairContactKeepsPressedFingersApart) {
+    auto run = [](double penalty_scale) {
+        Scene s;
+        FingerRow a = table_4_1()[3];  // finger D's row: 3 in, no roll or pitch
+        a.alpha = 0.0;                 // undamped: B keeps its swing
+        FingerRow b = a;
+        a.name = "A", b.name = "B";
+        b.initial_angle = a.initial_angle + 10.0 * deg;
+        s.hand.fingers = {a, b};
+        s.hand.drum = stepped_drum(0.0);
+        s.contacts.push_back({"finger-B", "finger-A", {}, true, penalty_scale});
+        HandModel hm(s);
+        // B turned towards A about the drum axis at 15 rad/s (tip ~2.8 m/s).
+        const auto& X = hm.mesh().nodes;
+        Vec3 ca = Vec3::Zero(), cb = Vec3::Zero();
+        for (int n : hm.part_nodes("finger-A")) ca += X[n] / hm.part_nodes("finger-A").size();
+        for (int n : hm.part_nodes("finger-B")) cb += X[n] / hm.part_nodes("finger-B").size();
+        const Vec3 c = s.hand.drum.centre;
+        Vec3 w = 15.0 * Vec3::UnitY();
+        if (w.cross(cb - c).dot(ca - cb) < 0) w = -w;
+        for (int n : hm.part_nodes("finger-B")) hm.model().set_initial_velocity({n}, w.cross(X[n] - c));
+        double gap = 1e9;
+        for (int i : hm.part_nodes("finger-A"))
+            for (int j : hm.part_nodes("finger-B")) gap = std::min(gap, (X[i] - X[j]).norm());
+        fmt::print("fingers A and B: closest nodes {:.2f} mm apart at the start\n", 1e3 * gap);
+        ExplicitOptions opt;
+        opt.end_time = 12e-3;
+        opt.print_summary = false;
+        opt.progress = false;
+        ExplicitSolver solver(hm.model(), opt);
+        return solver.run();
+    };
+    const RunSummary held = run(0.1), free = run(1e-6);
+    const auto& h = interface(held, "finger-B on finger-A");
+    const auto& f = interface(free, "finger-B on finger-A");
+    fmt::print("finger B against finger A: penetration {:.3f} of the element with contact, {:.3f} without; contact energy {:.3g} J\n",
+               h.max_penetration_fraction, f.max_penetration_fraction, h.energy);
+    EXPECT_GT(h.max_penetration_fraction, 0.0);    // they touched
+    EXPECT_LT(h.max_penetration_fraction, 0.2);    // and did not interpenetrate
+    EXPECT_GT(f.max_penetration_fraction, 0.5);    // without the force B goes into A
+}
+
+// Scene::mirror_contact: a finger that sweeps towards the symmetry plane of a half object stays on
+// its side of it (the frictionless wall "mirror-plane"); without it the finger crosses the plane.
+TEST(Hand, MirrorContactKeepsFingersOnTheirSideOfTheSymmetryPlane) {
+    // Finger D on a drum turning at omega; a small half object far away (only its symmetry plane
+    // z = plane matters). Returns the summary, the finger's largest z at the start and over the run.
+    auto run = [](double omega, double plane, bool mirror, double& z0, double& zmax) {
+        Scene s;
+        s.hand.fingers = {table_4_1()[3]};
+        s.hand.drum = stepped_drum(omega);
+        EllipsoidObject o;
+        o.part = "object";
+        o.semi_axes = Vec3(20, 20, 20) * mm;
+        o.grid = EllipsoidGrid{4, 4, 2, 1, 0.5};
+        o.material = ElasticMaterial::make("rubber", 6.1e6, 0.49, 1000.0);
+        o.centre = Vec3(1.0, 0.0, plane);
+        s.objects.push_back(o);
+        s.mirror_contact = mirror;
+        HandModel hm(s);
+        ExplicitOptions opt;
+        opt.end_time = 10e-3;
+        opt.print_summary = false;
+        opt.progress = false;
+        opt.observer_interval = 0.0;
+        ExplicitSolver solver(hm.model(), opt);
+        const auto finger = hm.part_nodes("finger-D");
+        z0 = zmax = -1e9;
+        for (int n : finger) z0 = std::max(z0, hm.mesh().nodes[n].z());
+        solver.observer = [&](const ExplicitSolver& sv) {
+            for (int n : finger) zmax = std::max(zmax, sv.state().x[n].z());
+        };
+        return solver.run();
+    };
+    // Free: the sense of rotation that carries the finger towards +z (10 rad/s, tip ~1.8 m/s).
+    double omega = 10.0, z0 = 0, zfree = 0;
+    run(omega, 1.0, false, z0, zfree);
+    if (zfree - z0 < 5 * mm) omega = -omega, run(omega, 1.0, false, z0, zfree);
+    ASSERT_GT(zfree - z0, 5 * mm);
+    // The plane 40 % of the way: the free finger crosses it by 60 % of its travel.
+    const double plane = z0 + 0.4 * (zfree - z0);
+    double zheld = 0;
+    const RunSummary held = run(omega, plane, true, z0, zheld);
+    const auto& wall = interface(held, "fingers on mirror-plane");
+    fmt::print("finger D beyond its mirror plane: {:.2f} mm free, {:.3f} mm with the wall ({:.3f} of the element)\n",
+               1e3 * (zfree - plane), 1e3 * (zheld - plane), wall.max_penetration_fraction);
+    EXPECT_GT(wall.max_penetration_fraction, 0.0);  // it touched
+    EXPECT_LT(wall.max_penetration_fraction, 0.2);  // and stayed on its side
+    EXPECT_LT(zheld - plane, 1 * mm);
+}
