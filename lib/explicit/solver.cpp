@@ -370,8 +370,6 @@ ExplicitSolver::ExplicitSolver(ExplicitModel& model, ExplicitOptions options)
     if (!(opt_.health_from >= 0.0 && opt_.health_until > opt_.health_from))
         throw InputError(fmt::format("explicit run '{}': the judged window [{}, {}] s (health_from, health_until) is empty",
                                      opt_.name, opt_.health_from, opt_.health_until));
-    summary_.energy.window_from = opt_.health_from;
-    summary_.energy.window_until = opt_.health_until;
     initialize();
 }
 
@@ -415,6 +413,8 @@ void ExplicitSolver::initialize() {
     // Selective mass scaling (Sec 2.3.5, observation 4): raise every element's critical step to
     // mass_scaling_dt / dt_scale by scaling its density with (dt_target / dt_e)^2.
     summary_ = RunSummary{};
+    summary_.energy.window_from = opt_.health_from;  // the judged window (EnergySummary)
+    summary_.energy.window_until = opt_.health_until;
     summary_.name = opt_.name;
     // Also the smallest Table 2-1 step of the solid groups on the reference (with the scaling), the
     // step the measured stability factor refers to (measure_omega_max).

@@ -25,6 +25,17 @@ using units::deg;
 using units::inch;
 using units::mm;
 
+namespace {
+// Options of a short test run: to end_time, quiet.
+ExplicitOptions quiet_run(double end_time) {
+    ExplicitOptions opt;
+    opt.end_time = end_time;
+    opt.print_summary = false;
+    opt.progress = false;
+    return opt;
+}
+}  // namespace
+
 TEST(Ellipsoid, HalfFootballCountsAndVolume) {
     // Table 4-2: the half football has 512 elements and 677 nodes; our O-grid 512 / 678.
     const Mesh m = hex_ellipsoid(Vec3(122, 66, 66) * mm, EllipsoidGrid{}, true, "football");
@@ -170,10 +181,7 @@ TEST(Hand, CoRotatingDampingDoesNotDragARigidSpin) {
         s.hand.fingers = {table_4_1()[3]};  // finger D only
         s.damping_frame = frame;
         HandModel hm(s);
-        ExplicitOptions opt;
-        opt.end_time = 2e-3;
-        opt.print_summary = false;
-        opt.progress = false;
+        ExplicitOptions opt = quiet_run(2e-3);
         ExplicitSolver solver(hm.model(), opt);
         solver.run();
         const int n = hm.tip_node("D");
@@ -306,10 +314,7 @@ TEST(Hand, FingerPairContactKeepsPressedFingersApart) {
         for (int i : hm.part_nodes("finger-A"))
             for (int j : hm.part_nodes("finger-B")) gap = std::min(gap, (X[i] - X[j]).norm());
         fmt::print("fingers A and B: closest nodes {:.2f} mm apart at the start\n", 1e3 * gap);
-        ExplicitOptions opt;
-        opt.end_time = 12e-3;
-        opt.print_summary = false;
-        opt.progress = false;
+        ExplicitOptions opt = quiet_run(12e-3);
         ExplicitSolver solver(hm.model(), opt);
         return solver.run();
     };
@@ -341,10 +346,7 @@ TEST(Hand, MirrorContactKeepsFingersOnTheirSideOfTheSymmetryPlane) {
         s.objects.push_back(o);
         s.mirror_contact = mirror;
         HandModel hm(s);
-        ExplicitOptions opt;
-        opt.end_time = 10e-3;
-        opt.print_summary = false;
-        opt.progress = false;
+        ExplicitOptions opt = quiet_run(10e-3);
         opt.observer_interval = 0.0;
         ExplicitSolver solver(hm.model(), opt);
         const auto finger = hm.part_nodes("finger-D");
