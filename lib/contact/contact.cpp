@@ -168,7 +168,12 @@ void ContactInterface::evaluate(std::span<const Vec3> x, std::span<const Vec3> v
                 }
                 pr.gap -= seg.offset + node_offset;
                 const double tiny = 1e-9 * P.size[s];
-                if (pr.gap > tiny && pr.tangential_offset <= tiny) nearest_front = std::min(nearest_front, pr.gap);
+                // In front: projecting inside the face (beyond round-off), or beside it within the edge
+                // tolerance a capture would allow, clearly in front of its plane (a clamped bilinear
+                // projection carries ~1e-7 x size of iteration error: two bars end to end).
+                if ((pr.gap > tiny && pr.tangential_offset <= tiny) ||
+                    (pr.gap > 1e-3 * P.size[s] && pr.tangential_offset <= opt_.edge_tolerance * P.size[s]))
+                    nearest_front = std::min(nearest_front, pr.gap);
                 if (!(pr.gap < -tiny) || -pr.gap > P.depth[s] || pr.tangential_offset > opt_.edge_tolerance * P.size[s])
                     continue;
                 const bool kept = s == hist.segment;

@@ -430,6 +430,27 @@ TEST(ContactPenalty, NodeBesideAThickBlockIsNotCapturedByAFarFace) {
     }
 }
 
+// The same beside a convex vertical edge of the block (the faceted rim of rotating_finger_contact's
+// object): the node is 0.5 mm in front of the side face x = 0.1 and 1 mm beyond its edge y = 0, so it
+// projects onto neither side face from inside, only within their edge tolerance; 20 mm above the
+// bottom face it lies within that face's edge tolerance and depth. It is outside the block: no force.
+// (Before the veto counted faces the node is beside, within the edge tolerance, the bottom face took
+// it with 20 mm of penetration: the 160 N spikes of rotating_finger_contact on finer finger meshes.)
+TEST(ContactPenalty, NodeBesideAConvexEdgeIsNotCapturedByAFarFace) {
+    Mesh m = box_hex8(0.1, 0.1, 0.1, 1, 1, 1, "block");
+    Mesh probe = box_hex8(0.01, 0.01, 0.01, 1, 1, 1, "probe");
+    probe.translate(Vec3(0.1005, -0.011, 0.02));  // x-min face 0.5 mm outside x = 0.1; y-max face 1 mm below y = 0
+    m.append(probe);
+    ContactOptions o;
+    o.edge_tolerance = 0.05;
+    ContactInterface ci("probe beside edge", ContactSurface::from_part(m, "probe", kRubber),
+                        ContactSurface::rigid_part(m, "block", 0.05), o);
+    std::vector<Vec3> f(m.node_count(), Vec3::Zero());
+    ci.evaluate(m.nodes, {}, 0.0, 0.0, f);
+    EXPECT_TRUE(ci.contacts().empty());
+    for (const Vec3& fi : f) EXPECT_EQ(fi.norm(), 0.0);
+}
+
 // --- friction ----------------------------------------------------------------------------------
 
 // A node pressed on a fixed rigid plate (constant penetration, f_n fixed) and pulled along x at
