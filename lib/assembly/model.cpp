@@ -63,13 +63,15 @@ std::vector<double> AssembledSystem::translations(const Eigen::VectorXd& reduced
 
 Model::Model(const Mesh& mesh) : mesh_(mesh) {}
 
-void Model::add_block(int block, int dofs_per_node, ElementKernel kernel) {
+void Model::add_block(int block, int dofs_per_node, ElementKernel kernel, int internal_dofs) {
     if (block < 0 || block >= static_cast<int>(mesh_.blocks.size()))
         throw InputError("model: block " + std::to_string(block) + " does not exist");
     if (dofs_per_node != 3 && dofs_per_node != 6)
         throw InputError("model: block " + std::to_string(block) + " asks for " + std::to_string(dofs_per_node) +
                          " DOFs per node (3 or 6)");
-    entries_.push_back({block, dofs_per_node, std::move(kernel)});
+    if (internal_dofs < 0)
+        throw InputError("model: block " + std::to_string(block) + " asks for " + std::to_string(internal_dofs) + " internal DOFs");
+    entries_.push_back({block, dofs_per_node, std::move(kernel), internal_dofs});
 }
 
 void Model::add_solid_part(std::string_view part, const ElasticMaterial& m, const SolidOptions& options) {
@@ -138,22 +140,30 @@ AssembledSystem Model::assemble() const {
     sys.dofs.finalize();
     sys.reduction = constraints_.reduce(sys.dofs);
     const auto& red = sys.reduction.reduced_of_full;
-    const int n = sys.reduction.size;
-    if (n == 0) throw InputError("model: every DOF is fixed; nothing to solve");
+    if (sys.reduction.size == 0) throw InputError("model: every DOF is fixed; nothing to solve");
+    // Element-internal DOFs follow the nodal equations, block entry after block entry.
+    std::vector<int> first_internal;
+    for (const Entry& en : entries_) {
+        first_internal.push_back(sys.reduction.size + sys.internal_dofs);
+        sys.internal_dofs += mesh_.blocks[en.block].size() * en.internal_dofs;
+    }
+    const int n = sys.size();
 
-    // Reduced DOF of local DOF k of element e (block entry), -1 when eliminated.
-    auto element_dofs = [&](const Entry& en, int e, std::vector<int>& out) {
+    // Reduced DOF of local DOF k of element e (block entry k_entry), -1 when eliminated.
+    auto element_dofs = [&](std::size_t k_entry, int e, std::vector<int>& out) {
+        const Entry& en = entries_[k_entry];
         out.clear();
         for (int node : mesh_.blocks[en.block].element(e))
             for (int c = 0; c < en.dofs_per_node; ++c) out.push_back(red[sys.dofs.dof(node, c)]);
+        for (int k = 0; k < en.internal_dofs; ++k) out.push_back(first_internal[k_entry] + e * en.internal_dofs + k);
     };
 
     // 1. Pattern (lower triangle, column-wise), built once from the connectivity.
     std::vector<std::vector<int>> rows_of(n);
     std::vector<int> ed;
-    for (const Entry& en : entries_)
-        for (int e = 0; e < mesh_.blocks[en.block].size(); ++e) {
-            element_dofs(en, e, ed);
+    for (std::size_t k = 0; k < entries_.size(); ++k)
+        for (int e = 0; e < mesh_.blocks[entries_[k].block].size(); ++e) {
+            element_dofs(k, e, ed);
             for (int j : ed)
                 if (j >= 0)
                     for (int i : ed)
@@ -174,9 +184,10 @@ AssembledSystem Model::assemble() const {
     std::vector<double> kval(inner.size(), 0.0), mval(inner.size(), 0.0);
 
     // 2. Scatter every element into the pattern.
-    for (const Entry& en : entries_) {
+    for (std::size_t k = 0; k < entries_.size(); ++k) {
+        const Entry& en = entries_[k];
         const ElementBlock& block = mesh_.blocks[en.block];
-        const int ndof = block.nodes_per_element() * en.dofs_per_node;
+        const int ndof = block.nodes_per_element() * en.dofs_per_node + en.internal_dofs;
         std::vector<Vec3> x;
         for (int e = 0; e < block.size(); ++e) {
             x.clear();
@@ -190,7 +201,7 @@ AssembledSystem Model::assemble() const {
             }
             if (m.stiffness.rows() != ndof || m.stiffness.cols() != ndof || m.mass.rows() != ndof || m.mass.cols() != ndof)
                 throw std::logic_error("element kernel of part '" + block.part + "' returned matrices of the wrong size");
-            element_dofs(en, e, ed);
+            element_dofs(k, e, ed);
             for (int b = 0; b < ndof; ++b) {
                 const int j = ed[b];
                 if (j < 0) continue;

@@ -5,8 +5,10 @@
 //
 // Element families plug in through a kernel: a function from the element's node coordinates (and
 // its index in the block) to its dense stiffness and mass, with `dofs_per_node` DOFs per node in the
-// order ux, uy, uz[, rx, ry, rz] node after node. Solids come ready-made (add_solid_part); a shell
-// element is added with add_block(block, 6, kernel).
+// order ux, uy, uz[, rx, ry, rz] node after node, followed by the element's own internal DOFs if it
+// has any (DOFs no other element shares and no support or coupling names, such as the bubble
+// amplitudes of CalculiX's C3D8I: they enter K and M as equations after the nodal ones). Solids come
+// ready-made (add_solid_part); a shell element is added with add_block(block, 6, kernel).
 //
 // Example: two parts joined by screws (coupled DOFs), clamped at the base, lowest ten modes:
 //
@@ -62,10 +64,12 @@ ElementKernel shell_kernel(double thickness, const ElasticMaterial& m, solid::Ma
 struct AssembledSystem {
     DofMap dofs;
     Constraints::Reduction reduction;
+    int internal_dofs = 0;  // element-internal DOFs, numbered after the reduction.size nodal equations
     Eigen::SparseMatrix<double> stiffness, mass;
 
-    int size() const { return reduction.size; }
-    /// Full DOF vector (fixed DOFs zero, slaves equal to their master) from a reduced one.
+    int size() const { return reduction.size + internal_dofs; }
+    /// Full nodal DOF vector (fixed DOFs zero, slaves equal to their master) from a reduced one
+    /// (element-internal DOFs are not nodal: they are left out).
     Eigen::VectorXd expand(const Eigen::VectorXd& reduced) const;
     /// Nodal translations (ux, uy, uz per node, zero for nodes without DOFs) of a reduced vector:
     /// the point field for VTU output.
@@ -77,8 +81,10 @@ public:
     /// The model keeps a reference to `mesh`, which must outlive it.
     explicit Model(const Mesh& mesh);
 
-    /// Adds the elements of block `block` computed by `kernel` with `dofs_per_node` (3 or 6).
-    void add_block(int block, int dofs_per_node, ElementKernel kernel);
+    /// Adds the elements of block `block` computed by `kernel` with `dofs_per_node` (3 or 6) and
+    /// `internal_dofs` DOFs of each element's own (the kernel's matrices are then
+    /// nodes x dofs_per_node + internal_dofs square, the internal DOFs last).
+    void add_block(int block, int dofs_per_node, ElementKernel kernel, int internal_dofs = 0);
     /// Adds every block of part `part` as linear solids of material m.
     void add_solid_part(std::string_view part, const ElasticMaterial& m, const SolidOptions& options = {});
     /// Adds every block of part `part` as MITC4 shells (quad4 only) of thickness t.
@@ -111,6 +117,7 @@ private:
         int block;
         int dofs_per_node;
         ElementKernel kernel;
+        int internal_dofs;
     };
     const Mesh& mesh_;
     std::vector<Entry> entries_;

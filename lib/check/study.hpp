@@ -87,6 +87,8 @@ public:
     /// (io::RunFolder: checked and locked on construction; finish() moves the files into place, so
     /// the folder always holds one complete run's set).
     const std::filesystem::path& results_dir() const { return results_dir_; }
+    /// The source tree (studies/<name>/ holds a study's case file and gnuplot script).
+    const std::filesystem::path& source_dir() const { return source_dir_; }
     /// Where figures are drawn (figures/ for `make`, build/figures for CTest); empty: none.
     const std::filesystem::path& figures_dir() const { return figures_dir_; }
     const ReferenceFile& reference() const { return reference_; }

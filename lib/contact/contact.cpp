@@ -146,11 +146,16 @@ void ContactInterface::evaluate(std::span<const Vec3> x, std::span<const Vec3> v
             // depth) is outside the master body, however deep it lies behind another face whose
             // edge tolerance it falls in (a finger beside a thick object, level with its faces).
             auto& hist = P.history[i];
+            const std::span<const int> candidates = P.list.candidates(static_cast<int>(i));
+            if (candidates.empty()) {  // most nodes, most cycles: no segment near, nothing to project
+                if (hist.segment >= 0) hist = {};  // separated (a node out of contact has the default)
+                continue;
+            }
             int best = -1, best_side = 0;
             Projection bp;
             double nearest_front = std::numeric_limits<double>::infinity();
             const double node_offset = P.slave->node_offset.empty() ? 0.0 : P.slave->node_offset[i];
-            for (int s : P.list.candidates(static_cast<int>(i))) {
+            for (int s : candidates) {
                 const auto& seg = segs[s];
                 Projection pr = seg.count == 4
                                     ? project_quad(xs, xm[seg.n[0]], xm[seg.n[1]], xm[seg.n[2]], xm[seg.n[3]])

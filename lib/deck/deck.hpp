@@ -27,8 +27,9 @@
 // displacement, an element in no section or in two.
 //
 // Element formulations follow the deck type so results compare with ccx element for element (see
-// element_formulation()): C3D8 the fully integrated trilinear brick, C3D8I the incompatible-modes
-// brick, C3D10 with ccx's 4-point mass rule, S4/S4R our MITC4 shell (ccx expands shells into
+// modal::add_element_block()): C3D8 the fully integrated trilinear brick, C3D8I the incompatible-modes
+// brick with its bubble amplitudes as element DOFs that carry mass (as ccx), C3D10 with ccx's 4-point
+// mass rule, S4/S4R our MITC4 shell (ccx expands shells into
 // C3D8I bricks: a different formulation, see tests/deck/peer_ccx_decks.cpp).
 #include <filesystem>
 #include <map>

@@ -155,12 +155,20 @@ Mat6 elasticity_matrix(const ElasticMaterial& m) {
     return D;
 }
 
-Eigen::MatrixXd hex8_stiffness(std::span<const Vec3> x, const ElasticMaterial& m, bool incompatible_modes) {
-    const auto X = coordinates<8>(x, "hex8 element");
+namespace {
+
+// The hex8 stiffness before condensation: Kuu (24 x 24, the trilinear brick), and with the nine
+// bubble amplitudes a (bubble k = 0, 1, 2 times component x, y, z: column 3k + d) Kua (24 x 9) and
+// Kaa (9 x 9); 2x2x2 Gauss.
+struct Hex8Blocks {
+    Eigen::Matrix<double, 24, 24> uu = Eigen::Matrix<double, 24, 24>::Zero();
+    Eigen::Matrix<double, 24, 9> ua = Eigen::Matrix<double, 24, 9>::Zero();
+    Eigen::Matrix<double, 9, 9> aa = Eigen::Matrix<double, 9, 9>::Zero();
+};
+
+Hex8Blocks hex8_blocks(const Eigen::Matrix<double, 3, 8>& X, const ElasticMaterial& m, bool incompatible_modes) {
     const Mat6 D = elasticity_matrix(m);
-    Eigen::Matrix<double, 24, 24> Kuu = Eigen::Matrix<double, 24, 24>::Zero();
-    Eigen::Matrix<double, 24, 9> Kua = Eigen::Matrix<double, 24, 9>::Zero();
-    Eigen::Matrix<double, 9, 9> Kaa = Eigen::Matrix<double, 9, 9>::Zero();
+    Hex8Blocks k;
     // Centre Jacobian for the incompatible modes (Taylor, Beresford & Wilson 1976): their gradients
     // are mapped with J0 and scaled by det J0 / det J so that a constant strain state is reproduced.
     Eigen::Matrix<double, 3, 8> g0;
@@ -173,18 +181,51 @@ Eigen::MatrixXd hex8_stiffness(std::span<const Vec3> x, const ElasticMaterial& m
         Eigen::Matrix<double, 3, 8> g;
         const double det = physical_derivatives<8>(X, e.dn, g, "hex8 element");
         const Eigen::Matrix<double, 6, 24> B = strain_matrix<8>(g);
-        Kuu.noalias() += B.transpose() * D * B * det;  // Gauss weights are 1
+        k.uu.noalias() += B.transpose() * D * B * det;  // Gauss weights are 1
         if (!incompatible_modes) continue;
         // Bubble modes P_k = 1 - xi_k^2: natural gradient -2 xi_k along direction k only.
         Eigen::Matrix<double, 3, 3> dp = Eigen::Matrix3d::Zero();
         dp(0, 0) = -2 * r, dp(1, 1) = -2 * s, dp(2, 2) = -2 * t;
         const Eigen::Matrix<double, 3, 3> gp = J0inv * dp * (det0 / det);
         const Eigen::Matrix<double, 6, 9> Ba = strain_matrix<3>(gp);
-        Kua.noalias() += B.transpose() * D * Ba * det;
-        Kaa.noalias() += Ba.transpose() * D * Ba * det;
+        k.ua.noalias() += B.transpose() * D * Ba * det;
+        k.aa.noalias() += Ba.transpose() * D * Ba * det;
     }
-    if (incompatible_modes) Kuu -= Kua * Kaa.ldlt().solve(Kua.transpose());
-    return Eigen::MatrixXd(0.5 * (Kuu + Kuu.transpose()));
+    return k;
+}
+
+}  // namespace
+
+Eigen::MatrixXd hex8_stiffness(std::span<const Vec3> x, const ElasticMaterial& m, bool incompatible_modes) {
+    Hex8Blocks k = hex8_blocks(coordinates<8>(x, "hex8 element"), m, incompatible_modes);
+    if (incompatible_modes) k.uu -= k.ua * k.aa.ldlt().solve(k.ua.transpose());
+    return Eigen::MatrixXd(0.5 * (k.uu + k.uu.transpose()));
+}
+
+Hex8IncompatibleDofs hex8_incompatible_dofs(std::span<const Vec3> x, const ElasticMaterial& m) {
+    const auto X = coordinates<8>(x, "hex8 element");
+    const Hex8Blocks k = hex8_blocks(X, m, true);
+    Hex8IncompatibleDofs out;
+    out.stiffness.resize(33, 33);
+    out.stiffness << k.uu, k.ua, k.ua.transpose(), k.aa;
+    out.stiffness = 0.5 * (out.stiffness + out.stiffness.transpose());
+    // The mass of the same displacement field: the eight trilinear functions and the three bubbles
+    // 1 - xi_k^2 (each carrying three components), with the stiffness's 2x2x2 rule. The rule is exact
+    // for the trilinear part of a parallelepiped but not for the bubbles (degree 4 along xi_k): there
+    // each bubble is 2/3 at every point, which gives it 4/9 of the element's mass where the exact
+    // integral gives 8/15. CalculiX builds its C3D8I mass so (shape8humass.f); we follow it.
+    Eigen::MatrixXd mm = Eigen::MatrixXd::Zero(11, 11);
+    for (int i = 0; i < 8; ++i) {
+        const double r = kHexCorner[i][0] * kGauss2, s = kHexCorner[i][1] * kGauss2, t = kHexCorner[i][2] * kGauss2;
+        const ShapeEval<8> e = hex8_shape(r, s, t);
+        Eigen::Matrix<double, 3, 8> g;
+        const double det = physical_derivatives<8>(X, e.dn, g, "hex8 element");
+        Eigen::Matrix<double, 11, 1> n;
+        n << e.n, 1 - r * r, 1 - s * s, 1 - t * t;
+        mm.noalias() += m.density * det * n * n.transpose();
+    }
+    out.mass = expand3(mm);
+    return out;
 }
 
 Eigen::MatrixXd hex8_mass(std::span<const Vec3> x, double density, MassKind kind) {

@@ -31,6 +31,18 @@ Eigen::Matrix<double, 6, 6> elasticity_matrix(const ElasticMaterial& m);
 /// Throws InputError when the Jacobian is non-positive at an integration point.
 Eigen::MatrixXd hex8_stiffness(std::span<const Vec3> x, const ElasticMaterial& m, bool incompatible_modes = true);
 
+/// The same incompatible-modes brick with its nine bubble amplitudes kept as element DOFs instead of
+/// condensed, as CalculiX's C3D8I keeps them (three extra nodes per element): 33 x 33 matrices, the
+/// 24 nodal DOFs, then bubble 1 - xi^2 (x, y, z components), 1 - eta^2, 1 - zeta^2. The stiffness is
+/// the one hex8_stiffness condenses (statically condensing this one gives hex8_stiffness exactly);
+/// the mass is that of the whole displacement field, bubbles included, with the 2x2x2 rule as ccx
+/// integrates it (shape8humass.f). The bubbles then carry mass, so in an eigenproblem this element
+/// is more flexible than the condensed one (its frequencies are lower; tests/deck measures how much).
+struct Hex8IncompatibleDofs {
+    Eigen::MatrixXd stiffness, mass;  // 33 x 33
+};
+Hex8IncompatibleDofs hex8_incompatible_dofs(std::span<const Vec3> x, const ElasticMaterial& m);
+
 /// Hex8 mass (24 x 24): consistent with 2x2x2 Gauss (exact for parallelepipeds) or lumped row sums.
 Eigen::MatrixXd hex8_mass(std::span<const Vec3> x, double density, MassKind kind = MassKind::Consistent);
 

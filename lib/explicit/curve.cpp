@@ -81,6 +81,20 @@ double Curve::area(double a, double b) const {
     return s;
 }
 
+Curve Curve::shifted(double t0) const {
+    if (p_.empty() || t0 == 0.0) return *this;
+    std::vector<std::pair<double, double>> q;
+    std::size_t k = 0;
+    while (k < p_.size() && p_[k].first < t0) ++k;
+    // The value in force at t0, unless a point (or the later point of a step) lies at t0.
+    if (k == p_.size() || p_[k].first > t0) q.push_back({0.0, (*this)(t0)});
+    for (; k < p_.size(); ++k) q.push_back({p_[k].first - t0, p_[k].second});
+    Curve c;
+    c.p_ = std::move(q);
+    c.name_ = name_;
+    return c;
+}
+
 double Curve::integral(double t) const { return t >= 0.0 ? area(0.0, t) : -area(t, 0.0); }
 
 }  // namespace fem

@@ -38,6 +38,10 @@ public:
     double operator()(double t) const;
     /// int_0^t value(s) ds (negative for t < 0), exact for the piecewise-linear curve.
     double integral(double t) const;
+    /// The curve seen from time t0 on: c'(tau) = c(tau + t0). Points before t0 are replaced by one
+    /// point (0, c(t0)) (none when a point lies at t0), so a schedule that starts at 0 and is shifted
+    /// by t0 is the schedule written from t0 on, point for point (hand::seen_from).
+    Curve shifted(double t0) const;
     const std::string& name() const { return name_; }
     /// The points (empty for the default constant 1).
     const std::vector<std::pair<double, double>>& points() const { return p_; }

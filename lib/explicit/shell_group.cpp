@@ -256,8 +256,7 @@ GroupForceResult ShellGroup::internal_forces(NodalState& s, bool compute_dt) {
     const int nn = static_cast<int>(nodes_.size());
     // Node pass: the step's increments against the last evaluation (positions and rotations), the
     // mid-step positions; then the new state becomes the "last" one.
-#pragma omp parallel for schedule(static) if (nn >= par::kParallelMin)
-    for (int k = 0; k < nn; ++k) {
+    par::for_each_index(nn, nn >= par::kParallelMin, [&](int k) {
         const int node = nodes_[k];
         const Vec3& x = s.x[node];
         du_[k] = x - x_prev_[k];
@@ -266,7 +265,7 @@ GroupForceResult ShellGroup::internal_forces(NodalState& s, bool compute_dt) {
         const Mat3& R = s.rotation[s.rot_index[node]];
         dtheta_[k] = shellbt::rotation_increment(R, R_prev_[k]);
         R_prev_[k] = R;
-    }
+    });
     const shellbt::Constants& c = consts_;
     auto run_chunk = [&](int chunk) {
         ChunkSums p;
@@ -316,16 +315,7 @@ GroupForceResult ShellGroup::internal_forces(NodalState& s, bool compute_dt) {
         }
         partial_[chunk] = p;
     };
-#pragma omp parallel if (n >= par::kParallelMin)
-    {
-        const int colours = static_cast<int>(colouring_.colours.size());
-        for (int k = 0; k < colours; ++k) {
-            const auto& list = colouring_.colours[k];
-            const int m = static_cast<int>(list.size());
-#pragma omp for schedule(dynamic, 1)
-            for (int i = 0; i < m; ++i) run_chunk(list[i]);
-        }
-    }
+    colouring_.for_each_chunk(n >= par::kParallelMin, run_chunk);
     return combine_chunks(partial_, order_, compute_dt);
 }
 

@@ -696,13 +696,9 @@ double ExplicitSolver::measure_omega_max() {
 
 void ExplicitSolver::compute_forces(bool compute_dt) {
     const int n = s_.node_count();
-#pragma omp parallel for schedule(static) if (n >= par::kParallelMin)
-    for (int i = 0; i < n; ++i) s_.f[i].setZero();
+    par::for_each_index(n, n >= par::kParallelMin, [&](int i) { s_.f[i].setZero(); });
     for (auto& m : s_.moment) m.setZero();
-    if (book_viscous_) {
-#pragma omp parallel for schedule(static) if (n >= par::kParallelMin)
-        for (int i = 0; i < n; ++i) s_.fv[i].setZero();
-    }
+    if (book_viscous_) par::for_each_index(n, n >= par::kParallelMin, [&](int i) { s_.fv[i].setZero(); });
     e_int_ = e_hg_ = visc_power_ = 0.0;
     std::fill(part_int_.begin(), part_int_.end(), 0.0);
     std::fill(part_hg_.begin(), part_hg_.end(), 0.0);
@@ -1386,8 +1382,7 @@ RunSummary ExplicitSolver::run() {
         // Central difference (Eq 2-5 with lumped M): v(n+1/2) from v(n-1/2), with the damping force
         // -alpha m v taken at the mid-point (v(n-1/2) + v(n+1/2))/2 (second order, unconditionally
         // stable for the damping term); x(n+1) = x(n) + dt v(n+1/2).
-#pragma omp parallel for schedule(static) if (n >= par::kParallelMin)
-        for (int c = 0; c < chunks; ++c) {
+        par::for_each_index(chunks, n >= par::kParallelMin, [&](int c) {
             Partial p;
             const auto [i0, i1] = par::chunk_range(c, n);
             for (int i = i0; i < i1; ++i) {
@@ -1448,7 +1443,7 @@ RunSummary ExplicitSolver::run() {
                 s_.x[i] += dt_half_ * vp;
             }
             partial[c] = p;
-        }
+        });
         Partial tot;
         for (const auto& p : partial) {  // fixed order: deterministic
             tot.ke += p.ke;

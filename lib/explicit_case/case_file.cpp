@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <set>
+#include <tuple>
 
 #include <fmt/format.h>
 
@@ -134,7 +135,9 @@ Part read_part(const TomlTable& t, const std::map<std::string, ElasticMaterial>&
     if (p.mesh != "ellipsoid") keys.insert(keys.end(), {"offset", "hourglass_qm"});
     if (p.mesh == "box") keys.insert(keys.end(), {"size", "origin", "elements", "element"});
     if (p.mesh == "finger") keys.insert(keys.end(), {"table_3_2_case", "table_4_1_finger"});
-    if (p.mesh == "ellipsoid") keys.insert(keys.end(), {"semi_axes", "centre", "grid", "inner_scale", "half", "mass"});
+    if (p.mesh == "ellipsoid")
+        keys.insert(keys.end(), {"semi_axes", "centre", "grid", "inner_scale", "half", "mass", "carried_velocity", "carried_scale",
+                                 "carried_scale_curve", "carried_scale_steps"});
     if (p.mesh == "gmsh" || p.mesh == "deck") keys.push_back("file");
     refuse_keys_outside(t, keys, fmt::format("a '{}' part", p.mesh));
     p.material = material_of(t, materials);
@@ -157,18 +160,37 @@ Part read_part(const TomlTable& t, const std::map<std::string, ElasticMaterial>&
         if (t.has("table_3_2_case")) p.table_3_2_case = t.choice("table_3_2_case", {"A", "B", "C", "D"});
         else p.table_4_1_finger = t.choice("table_4_1_finger", {"A", "B", "C", "D", "E"});
     } else if (p.mesh == "ellipsoid") {
-        p.semi_axes = vec3(t, "semi_axes", Range::positive());
-        p.centre = vec3_or(t, "centre", Vec3::Zero());
+        hand::EllipsoidObject& o = p.ellipsoid;
+        o.part = p.name;
+        o.material = p.material;
+        o.alpha = p.alpha;
+        o.initial_velocity = p.initial_velocity;
+        o.semi_axes = vec3(t, "semi_axes", Range::positive());
+        o.centre = vec3_or(t, "centre", Vec3::Zero());
         if (t.has("grid")) {
             const auto g = t.integers<int>("grid", 4, {.min = 1, .max = 1000});
-            p.grid.nx = g[0], p.grid.ny = g[1], p.grid.nz = g[2], p.grid.layers = g[3];
+            o.grid.nx = g[0], o.grid.ny = g[1], o.grid.nz = g[2], o.grid.layers = g[3];
             const double n = double(g[0]) * g[1] * g[2] + 2.0 * (double(g[0]) * g[1] + double(g[1]) * g[2] + double(g[0]) * g[2]) * g[3];
             require_room(t, "grid", n, fmt::format("an ellipsoid grid [{}, {}, {}, {}]", g[0], g[1], g[2], g[3]));
         }
         // The inner block's corners must stay inside the ellipsoid (s sqrt(3) < 1).
-        p.grid.inner_scale = t.real_or("inner_scale", p.grid.inner_scale, Range::open(0.0, 0.57));
-        p.half = t.boolean_or("half", false);
-        p.mass = t.real_or("mass", 0.0, Range::positive());
+        o.grid.inner_scale = t.real_or("inner_scale", o.grid.inner_scale, Range::open(0.0, 0.57));
+        o.half = t.boolean_or("half", false);
+        o.mass = t.real_or("mass", 0.0, Range::positive());
+        // Carried by the conveyor (hand::EllipsoidObject::carried_velocity: Sec 4.4's "conveyor speed
+        // = object speed"): the velocity components along its non-zero axes prescribed, times a curve.
+        const bool scaled = t.has("carried_scale") || t.has("carried_scale_curve") || t.has("carried_scale_steps");
+        if (t.has("carried_velocity")) {
+            if (!hand_case)
+                t.fail("carried_velocity", "only the objects of a case with [hand] are carried (elsewhere a [[boundary]] "
+                                           "velocity prescribes a node set's velocity)");
+            o.carried_velocity = vec3(t, "carried_velocity");
+            if (o.carried_velocity == Vec3::Zero()) t.fail("carried_velocity", "is zero: it would carry nothing; remove it");
+            o.carried_scale = curve(t, "carried_scale", Curve());
+        } else if (scaled) {
+            t.fail(t.has("carried_scale") ? "carried_scale" : t.has("carried_scale_curve") ? "carried_scale_curve" : "carried_scale_steps",
+                   "scales carried_velocity, which is not given");
+        }
     } else {
         p.file = t.path("file");
     }
@@ -192,13 +214,16 @@ RigidPart read_rigid_part(const TomlTable& t, bool hand_case) {
     refuse_keys_outside(t, keys, fmt::format("a '{}' rigid part", r.mesh));
     r.depth = t.real_or("depth", 0.03, Range::positive());
     if (r.mesh == "plate") {
-        r.centre = vec3(t, "centre");
-        r.u = vec3(t, "u");
-        r.v = vec3(t, "v");
-        if (r.u.cross(r.v).norm() <= 1e-12 * (r.u.norm() * r.v.norm() + 1e-300))
+        hand::Plate& q = r.plate;
+        q.part = r.name;
+        q.depth = r.depth;
+        q.centre = vec3(t, "centre");
+        q.u = vec3(t, "u");
+        q.v = vec3(t, "v");
+        if (q.u.cross(q.v).norm() <= 1e-12 * (q.u.norm() * q.v.norm() + 1e-300))
             t.fail("v", "u and v must span a plane (not parallel, not zero)");
         const auto s = t.integers<int>("segments", 2, {.min = 1, .max = 100000});
-        r.segments = {s[0], s[1]};
+        q.nu = s[0], q.nv = s[1];
         require_room(t, "segments", double(s[0]) * s[1], fmt::format("a {} x {} plate", s[0], s[1]));
     } else if (r.mesh == "box") {
         r.size = vec3(t, "size", Range::positive());
@@ -213,6 +238,8 @@ RigidPart read_rigid_part(const TomlTable& t, bool hand_case) {
     } else {
         r.file = t.path("file");
     }
+    int motions = 0;
+    std::optional<std::pair<Vec3, Curve>> translation;  // the first entry, when a translation
     for (const TomlTable& m : t.tables("motion")) {
         const std::string type = m.choice("type", {"translation", "rotation"});
         RigidMotion e;
@@ -221,7 +248,7 @@ RigidPart read_rigid_part(const TomlTable& t, bool hand_case) {
             const Vec3 direction = vec3(m, "direction");
             if (direction.norm() == 0.0) m.fail("direction", "must not be zero");
             Curve speed = curve(m, "speed", Curve::constant(1.0));
-            if (r.motion_count == 0) r.translation = std::pair{direction, speed};
+            if (motions == 0) translation = std::pair{direction, speed};
             e = RigidMotion::translation(direction, std::move(speed));
         } else {
             m.allow({"type", "point", "axis", "omega", "omega_curve", "omega_steps"});
@@ -232,12 +259,12 @@ RigidPart read_rigid_part(const TomlTable& t, bool hand_case) {
             e = RigidMotion::rotation(vec3_or(m, "point", Vec3::Zero()), axis, curve(m, "omega", Curve::constant(0.0)));
         }
         r.motion = r.motion.then(e);  // later entries act on the result of the earlier ones
-        ++r.motion_count;
+        ++motions;
     }
-    if (r.motion_count != 1) r.translation.reset();
-    if (hand_case && !r.translation && r.motion_count > 0)
+    if (hand_case && motions > 0 && !(motions == 1 && translation))
         t.fail("motion", "a plate of a case with [hand] moves by one translation (one [[rigid_part.motion]] of type "
                          "\"translation\")");
+    if (motions == 1 && translation) std::tie(r.plate.direction, r.plate.speed) = *translation;
     return r;
 }
 
@@ -255,11 +282,25 @@ hand::FingerRow read_finger(const TomlTable& t) {
     return f;
 }
 
-Hand read_hand(const TomlTable& t, const std::map<std::string, ElasticMaterial>& materials) {
-    t.allow({"fingers", "finger", "drum", "material", "section", "layer_length", "semi_major", "semi_minor", "theta_sign",
+// [hand.turn]: the whole hand turned about an axis on top of the drum's spin (hand::HandTurn: the
+// flip of Sec 4.4, Table 4-6).
+hand::HandTurn read_turn(const TomlTable& t) {
+    t.allow({"point", "axis", "omega", "omega_curve", "omega_steps"});
+    hand::HandTurn turn;
+    turn.point = vec3_or(t, "point", Vec3::Zero());
+    turn.axis = vec3_or(t, "axis", Vec3::UnitZ());
+    if (turn.axis == Vec3::Zero()) t.fail("axis", "must not be zero");
+    if (!t.has("omega") && !t.has("omega_curve") && !t.has("omega_steps"))
+        t.fail("missing the angular speed: omega [rad/s], omega_curve or omega_steps");
+    turn.omega = curve(t, "omega", Curve::constant(0.0));
+    return turn;
+}
+
+hand::Scene read_hand(const TomlTable& t, const std::map<std::string, ElasticMaterial>& materials) {
+    t.allow({"fingers", "finger", "drum", "turn", "material", "section", "layer_length", "semi_major", "semi_minor", "theta_sign",
              "roll_sign", "damping_frame", "fingers_start_spinning", "symmetry"});
-    Hand h;
-    hand::HandSpec& s = h.spec;
+    hand::Scene h;
+    hand::HandSpec& s = h.hand;
     if (t.has("fingers") == !t.tables("finger").empty())
         t.fail("give the fingers either as fingers = \"table-4-1\" or as [[hand.finger]] rows");
     if (t.has("fingers")) {
@@ -296,6 +337,7 @@ Hand read_hand(const TomlTable& t, const std::map<std::string, ElasticMaterial>&
         s.drum.initial_angle = d->real_or("initial_angle_deg", 0.0) * units::deg;
         h.drum_segments = d->integer_or<int>("segments", 48, {.min = 3, .max = 100000});
     }
+    if (const auto turn = t.optional_table("turn")) h.turn = read_turn(*turn);
     try {
         hand::validate(s);
     } catch (const InputError& e) {
@@ -350,9 +392,51 @@ Boundary read_boundary(const TomlTable& t) {
     return b;
 }
 
+// [[phase]] name, start_time, release: the run in stages (ExplicitCase::phases).
+void read_phases(const TomlTable& root, ExplicitCase& c) {
+    const auto tables = root.tables("phase");
+    std::set<std::string> names;
+    for (std::size_t k = 0; k < tables.size(); ++k) {
+        const TomlTable& t = tables[k];
+        t.allow({"name", "start_time", "release"});
+        Phase ph;
+        ph.line = line_of(t);
+        ph.name = t.string("name");
+        if (ph.name.empty() || ph.name.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-") != std::string::npos)
+            t.fail("name", fmt::format("must be one word of letters, digits, _ and - (it names the phase's output folder), got '{}'", ph.name));
+        if (!names.insert(ph.name).second) t.fail("name", "'" + ph.name + "' is used twice");
+        if (k == 0) {
+            if (t.has("start_time") && t.real("start_time") != 0.0) t.fail("start_time", "the first phase starts at 0 (the run's start)");
+            if (t.has("release")) t.fail("release", "the first phase has nothing to release (objects are carried from t = 0)");
+        } else {
+            ph.start = t.real("start_time", Range::positive());
+            if (!(ph.start > c.phases.back().start))
+                t.fail("start_time", fmt::format("{} s is not after the previous phase's start ({} s)", ph.start, c.phases.back().start));
+            if (!(ph.start < c.control.end_time))
+                t.fail("start_time", fmt::format("{} s is not before end_time ({} s)", ph.start, c.control.end_time));
+        }
+        if (t.has("release")) {
+            std::vector<std::string> carried;
+            for (const Part& p : c.parts)
+                if (p.mesh == "ellipsoid" && p.ellipsoid.carried_velocity != Vec3::Zero()) carried.push_back(p.name);
+            for (const std::string& name : t.strings("release")) {
+                if (std::find(carried.begin(), carried.end(), name) == carried.end())
+                    unknown_name(t, "release", name, "a carried object (an ellipsoid part with carried_velocity)", carried);
+                for (const Phase& before : c.phases)
+                    if (std::find(before.release.begin(), before.release.end(), name) != before.release.end())
+                        t.fail("release", fmt::format("'{}' is released already by phase '{}'", name, before.name));
+                ph.release.push_back(name);
+            }
+        }
+        c.phases.push_back(ph);
+    }
+    if (c.phases.size() == 1)
+        tables[0].fail("a single [[phase]] is the whole run: give two or more phases, or none");
+}
+
 ExplicitCase from_document(const input::TomlDocument& doc) {
     const TomlTable root = doc.root();
-    root.allow({"control", "output", "material", "part", "rigid_part", "hand", "contact", "boundary", "load", "gravity"});
+    root.allow({"control", "output", "material", "part", "rigid_part", "hand", "contact", "boundary", "load", "gravity", "phase"});
     ExplicitCase c;
     c.source = doc.source();
     c.base = doc.base();
@@ -425,7 +509,7 @@ ExplicitCase from_document(const input::TomlDocument& doc) {
     for (const RigidPart& r : c.rigid_parts) rigid.push_back(r.name);
     if (c.hand) {
         deformable.push_back("fingers");
-        for (const auto& f : c.hand->spec.fingers) deformable.push_back("finger-" + f.name);
+        for (const auto& f : c.hand->hand.fingers) deformable.push_back("finger-" + f.name);
         rigid.push_back("drum");
     }
     std::vector<std::string> all = deformable;
@@ -460,11 +544,35 @@ ExplicitCase from_document(const input::TomlDocument& doc) {
         Curve k = g->has("on_at") ? Curve::step(g->real("on_at", Range::non_negative())) : curve(*g, "scale", Curve());
         c.gravity = std::pair{acc, k};
     }
+    read_phases(root, c);
     doc.finish();
     return c;
 }
 
 }  // namespace
+
+ExplicitCase phase_case(const ExplicitCase& c, std::size_t k) {
+    if (k >= c.phases.size()) throw InputError(fmt::format("{}: the case has no phase {}", c.source, k));
+    ExplicitCase p = c;
+    p.phases.clear();
+    const double start = c.phases[k].start;
+    p.control.end_time = k + 1 < c.phases.size() ? c.phases[k + 1].start : c.control.end_time;
+    p.control.name = c.control.name + "-" + c.phases[k].name;
+    std::erase_if(p.control.restart_times, [&](double t) { return t <= start || t >= p.control.end_time; });
+    for (std::size_t j = 1; j <= k; ++j)
+        for (const std::string& name : c.phases[j].release)
+            for (Part& part : p.parts)
+                if (part.name == name) part.ellipsoid.carried_velocity = Vec3::Zero(), part.ellipsoid.carried_scale = Curve();
+    return p;
+}
+
+void cut_at(ExplicitCase& c, double t_end) {
+    if (!(t_end > 0.0)) throw InputError(fmt::format("{}: an end time must be > 0, got {}", c.source, t_end));
+    c.control.end_time = t_end;
+    std::erase_if(c.control.restart_times, [&](double t) { return t >= t_end; });
+    while (c.phases.size() > 1 && c.phases.back().start >= t_end) c.phases.pop_back();
+    if (c.phases.size() == 1) c.phases.clear();
+}
 
 ExplicitCase read_case(const std::filesystem::path& path) { return from_document(input::TomlDocument::read(path)); }
 

@@ -64,11 +64,9 @@ struct Part {
     std::string element = "hex8";  // box: hex8 | tet4 | tet10
     // finger: a Table 3-2 case ("A".."D") or a Table 4-1 finger ("A".."E"), root face at the origin
     std::string table_3_2_case, table_4_1_finger;
-    // ellipsoid
-    Vec3 semi_axes = Vec3::Zero(), centre = Vec3::Zero();
-    EllipsoidGrid grid;
-    bool half = false;
-    double mass = 0.0;             // > 0: density = mass / mesh volume
+    /// ellipsoid: the whole object as lib/hand takes it (geometry, grid, half, material, mass,
+    /// initial velocity, damping, and in a hand case its carriage); a hand case's objects are these.
+    hand::EllipsoidObject ellipsoid;
     // gmsh / deck: every solid element of the file is this part
     std::filesystem::path file;
     Vec3 offset = Vec3::Zero();    // moves the mesh (box, finger, gmsh, deck)
@@ -83,31 +81,26 @@ struct Part {
 struct RigidPart {
     std::string name;
     std::string mesh;              // plate | box | drum | gmsh
-    // plate (parallelogram centre +- u/2 +- v/2, normal u x v)
-    Vec3 centre = Vec3::Zero(), u = Vec3::UnitX(), v = -Vec3::UnitZ();
-    std::array<int, 2> segments{1, 1};
+    /// plate: as lib/hand takes it (centre, edge vectors, segments, depth; direction and speed when
+    /// its motion is one translation: a hand case's conveyor pallet).
+    hand::Plate plate;
     // box
     Vec3 size = Vec3::Zero(), origin = Vec3::Zero();
     std::array<int, 3> elements{1, 1, 1};
     // drum (stepped cylinder about y through centre): levels [y_bottom, y_top, radius]
+    Vec3 centre = Vec3::Zero();
     std::vector<hand::DrumLevel> levels;
     int drum_segments = 48;
     std::filesystem::path file;
     double depth = 0.03;           // deepest penetration taken as contact [m]
     /// The motion, composed in the order of the [[rigid_part.motion]] entries (the first innermost).
     RigidMotion motion;
-    /// The single translation, when the motion is one (a hand case's plate needs it).
-    std::optional<std::pair<Vec3, Curve>> translation;
-    int motion_count = 0;
     int line = 0;
 };
 
-/// One [[contact]] pair.
-struct Contact {
-    std::string slave, master;
-    contact::FrictionLaw friction;
-    bool two_way = true;           // deformable masters only
-    double penalty_scale = 0.1;    // LS-DYNA SLSFAC
+/// One [[contact]] pair (lib/hand's pair: slave, master, friction, two_way for deformable masters,
+/// penalty_scale = LS-DYNA SLSFAC), with its place in the file.
+struct Contact : hand::ContactPair {
     int line = 0;
 };
 
@@ -154,13 +147,13 @@ struct Control {
     std::string name;              // run name (default: the case file's stem)
 };
 
-/// A [hand] table: the drum, the Table 4-1 finger rows, the finger mesh, the damping frame.
-struct Hand {
-    hand::HandSpec spec;
-    hand::DampingFrame damping_frame = hand::DampingFrame::absolute;
-    bool fingers_start_spinning = true;
-    int drum_segments = 48;
-    bool symmetry = true;          // half objects get u_z = 0 on their cut plane
+/// One [[phase]]: the run in stages, each restarting from the previous one's state at its start
+/// (LS-DYNA's full deck restart), e.g. the grasp and the flip of thesis Sec 4.4.
+struct Phase {
+    std::string name;
+    double start = 0.0;            // [s]; the first phase starts at 0
+    std::vector<std::string> release;  // hand objects no longer carried from this phase on
+    int line = 0;
 };
 
 struct ExplicitCase {
@@ -175,7 +168,10 @@ struct ExplicitCase {
     std::vector<Boundary> boundaries;
     std::vector<Load> loads;
     std::optional<std::pair<Vec3, Curve>> gravity;
-    std::optional<Hand> hand;
+    /// A [hand] case: the hand, its turn, damping frame and the other scene settings (objects,
+    /// plates, contacts and gravity are the case's parts and keys; hand_scene puts them in).
+    std::optional<hand::Scene> hand;
+    std::vector<Phase> phases;     // empty: one run
 };
 
 /// Reads and validates a case file (InputError "file:line: key: problem").
@@ -185,6 +181,15 @@ ExplicitCase parse_case(std::string_view text, const std::string& source, const 
 
 /// The hand scene of a case with [hand] (what HandModel builds); InputError for a case without.
 hand::Scene hand_scene(const ExplicitCase& c);
+
+/// Phase k of a case with [[phase]]s as a case of its own: its end time (the next phase's start, or
+/// [control] end_time), the objects released up to it no longer carried, user restart times inside
+/// it, its name "<name>-<phase>". The phases after the first restart from the previous one's state.
+ExplicitCase phase_case(const ExplicitCase& c, std::size_t k);
+
+/// Ends the case at t_end (fem-explicit --end-time: a short run of a long case): phases starting at
+/// or after it and restart times from it on are dropped. InputError for t_end <= 0.
+void cut_at(ExplicitCase& c, double t_end);
 
 /// The explicit model of a case: reads the meshes, builds parts, rigid parts, contact, boundary
 /// conditions, loads and gravity. InputError naming the part, set or file for what cannot be built.
@@ -210,6 +215,8 @@ ExplicitOptions solver_options(const ExplicitCase& c, const CaseModel& m, const 
 
 /// Runs a case into c.output.folder as one io::RunFolder set (summary.txt, run.json,
 /// histories.h5, histories.dat, energies.dat, VTU/PVD, restart dumps); returns the summary text.
+/// A case with [[phase]]s runs each phase into <folder>/<phase>/ (the same files), each after the
+/// first restarting from the dump its predecessor wrote at its start, and a summary.txt of all.
 /// quiet: no progress line. Ctrl-C: the state reached is written, marked partial (PARTIAL.txt), and
 /// fem::Interrupted is thrown.
 std::string run_case(const ExplicitCase& c, bool quiet = false);

@@ -72,8 +72,8 @@ Mesh part_mesh(const Part& p) {
                                            hand::finger_layers(fm, row.length), p.name);
         }
     } else if (p.mesh == "ellipsoid") {
-        m = hex_ellipsoid(p.semi_axes, p.grid, p.half, p.name);
-        m.translate(p.centre);
+        m = hex_ellipsoid(p.ellipsoid.semi_axes, p.ellipsoid.grid, p.ellipsoid.half, p.name);
+        m.translate(p.ellipsoid.centre);
         return as_part(std::move(m), p.name);
     } else if (p.mesh == "gmsh") {
         m = read_gmsh(p.file);
@@ -85,7 +85,7 @@ Mesh part_mesh(const Part& p) {
 }
 
 Mesh rigid_mesh(const RigidPart& r) {
-    if (r.mesh == "plate") return parallelogram_quad4(r.centre, r.u, r.v, r.segments[0], r.segments[1], r.name);
+    if (r.mesh == "plate") return parallelogram_quad4(r.plate.centre, r.plate.u, r.plate.v, r.plate.nu, r.plate.nv, r.name);
     Mesh m;
     if (r.mesh == "box") {
         m = box_hex8(r.size.x(), r.size.y(), r.size.z(), r.elements[0], r.elements[1], r.elements[2], r.name);
@@ -105,43 +105,10 @@ Mesh rigid_mesh(const RigidPart& r) {
 
 hand::Scene hand_scene(const ExplicitCase& c) {
     if (!c.hand) throw InputError(c.source + ": the case has no [hand]");
-    hand::Scene s;
-    s.hand = c.hand->spec;
-    s.damping_frame = c.hand->damping_frame;
-    s.fingers_start_spinning = c.hand->fingers_start_spinning;
-    s.drum_segments = c.hand->drum_segments;
-    s.symmetry = c.hand->symmetry;
-    for (const Part& p : c.parts) {
-        hand::EllipsoidObject o;
-        o.part = p.name;
-        o.semi_axes = p.semi_axes;
-        o.centre = p.centre;
-        o.grid = p.grid;
-        o.half = p.half;
-        o.material = p.material;
-        o.mass = p.mass;
-        o.initial_velocity = p.initial_velocity;
-        o.alpha = p.alpha;
-        s.objects.push_back(o);
-    }
-    for (const RigidPart& r : c.rigid_parts) {
-        hand::Plate q;
-        q.part = r.name;
-        q.centre = r.centre;
-        q.u = r.u;
-        q.v = r.v;
-        q.nu = r.segments[0];
-        q.nv = r.segments[1];
-        q.depth = r.depth;
-        if (r.translation) {
-            q.direction = r.translation->first;
-            q.speed = r.translation->second;
-        } else {
-            q.speed = Curve::constant(0.0);  // at rest
-        }
-        s.plates.push_back(q);
-    }
-    for (const Contact& k : c.contacts) s.contacts.push_back({k.slave, k.master, k.friction, k.two_way, k.penalty_scale});
+    hand::Scene s = *c.hand;
+    for (const Part& p : c.parts) s.objects.push_back(p.ellipsoid);
+    for (const RigidPart& r : c.rigid_parts) s.plates.push_back(r.plate);
+    for (const Contact& k : c.contacts) s.contacts.push_back(k);
     if (c.gravity) {
         s.gravity = c.gravity->first;
         s.gravity_curve = c.gravity->second;
@@ -175,12 +142,13 @@ CaseModel::CaseModel(const ExplicitCase& c) {
             }
             part_nodes[p.name].assign(nodes.begin(), nodes.end());
             ElasticMaterial material = p.material;
-            if (p.mass > 0.0) {  // the density that gives the part this mass on its mesh (as HandModel does)
+            const double mass = p.mesh == "ellipsoid" ? p.ellipsoid.mass : 0.0;
+            if (mass > 0.0) {  // the density that gives the part this mass on its mesh (as HandModel does)
                 double volume = 0.0;
                 for (int b : msh.blocks_of_part(p.name))
                     for (int e = 0; e < msh.blocks[b].size(); ++e)
                         volume += contact::element_volume(msh.blocks[b].shape, msh.element_coordinates(b, e));
-                material = ElasticMaterial::make(material.name, material.youngs_modulus, material.poissons_ratio, p.mass / volume);
+                material = ElasticMaterial::make(material.name, material.youngs_modulus, material.poissons_ratio, mass / volume);
             }
             if (shapes == std::set{ElementShape::Hex8}) {
                 Hex8Options o;
@@ -324,23 +292,25 @@ void write_histories(const std::filesystem::path& dir, const History& h) {
 
 }  // namespace
 
-std::string run_case(const ExplicitCase& c, bool quiet) {
-    // The output folder is checked (writable, not in use) before the model is built; the run's files
-    // replace the previous set only when all are written.
-    io::RunFolder out(c.output.folder, "fem-explicit");
-    if (c.control.threads > 0) par::set_threads(c.control.threads);
+namespace {
+
+// One run of a case into `dir` (summary.txt, run.json, histories, VTU, restart dumps); the restart
+// dumps it wrote are added to `dumps`. `interrupted`: Ctrl-C's message (the state reached is written,
+// marked partial).
+std::string run_into(const ExplicitCase& c, const std::filesystem::path& dir, const std::filesystem::path& shown, bool quiet,
+                     std::vector<std::filesystem::path>& dumps, std::string& interrupted) {
+    std::filesystem::create_directories(dir);
     CaseModel m(c);
-    ExplicitOptions opt = solver_options(c, m, out.staging());
+    ExplicitOptions opt = solver_options(c, m, dir);
     opt.progress = !quiet;
     ExplicitSolver solver(m.model(), opt);
     RunSummary s;
-    std::string interrupted;
     try {
         s = solver.run();
     } catch (const Interrupted& e) {
         interrupted = e.what();  // the solver wrote its HDF5/VTU for the state reached, marked partial
     }
-    const auto& dir = out.staging();
+    dumps.insert(dumps.end(), solver.restart_files().begin(), solver.restart_files().end());
     write_histories(dir, solver.history());
     std::string text;
     if (!interrupted.empty()) {
@@ -357,9 +327,41 @@ std::string run_case(const ExplicitCase& c, bool quiet) {
         }
         io::write_text_file(dir / "run.json", j.dump(2) + "\n");
     }
-    text += "results: " + c.output.folder.string() + "/{summary.txt, run.json, histories.dat, energies.dat, von_mises.dat" +
+    text += "results: " + shown.string() + "/{summary.txt, run.json, histories.dat, energies.dat, von_mises.dat" +
             (c.output.h5 ? ", histories.h5" : "") + (c.output.vtu_interval > 0 ? ", results.pvd" : "") + "}\n";
     io::write_text_file(dir / "summary.txt", text);
+    return text;
+}
+
+}  // namespace
+
+std::string run_case(const ExplicitCase& c, bool quiet) {
+    // The output folder is checked (writable, not in use) before the model is built; the run's files
+    // replace the previous set only when all are written.
+    io::RunFolder out(c.output.folder, "fem-explicit");
+    if (c.control.threads > 0) par::set_threads(c.control.threads);
+    std::string text, interrupted;
+    std::vector<std::filesystem::path> dumps;
+    if (c.phases.empty()) {
+        text = run_into(c, out.staging(), c.output.folder, quiet, dumps, interrupted);
+    } else {
+        // Phase k runs to the next phase's start and writes a dump there; phase k + 1 restarts from it
+        // with its own model (objects released), as the thesis's flip restarts from the grasp.
+        for (std::size_t k = 0; k < c.phases.size() && interrupted.empty(); ++k) {
+            ExplicitCase p = phase_case(c, k);
+            if (k > 0) {
+                if (dumps.empty()) throw SolverError(fmt::format("{}: phase '{}' has no dump to start from", c.source, c.phases[k].name));
+                p.control.restart_from = dumps.back();
+            }
+            if (k + 1 < c.phases.size()) p.control.restart_times.push_back(c.phases[k + 1].start);
+            const std::size_t before = dumps.size();
+            text += fmt::format("== phase '{}' ({} to {} s) ==\n", c.phases[k].name, c.phases[k].start, p.control.end_time);
+            text += run_into(p, out.staging() / c.phases[k].name, c.output.folder / c.phases[k].name, quiet, dumps, interrupted);
+            if (k + 1 < c.phases.size() && interrupted.empty() && dumps.size() == before)
+                throw SolverError(fmt::format("{}: phase '{}' wrote no restart dump at {} s", c.source, c.phases[k].name, c.phases[k + 1].start));
+        }
+        io::write_text_file(out.staging() / "summary.txt", text);
+    }
     out.commit();
     if (!interrupted.empty()) throw Interrupted(interrupted + "; the state reached is in " + c.output.folder.string());
     return text;

@@ -1,14 +1,16 @@
 #pragma once
 // The ellipsoid grasp and flip of thesis Sec 4.4 as a hand::Scene: Tables 4-5 (grasp) and 4-6
 // (flip), with the inputs the text leaves out reconstructed (THESIS_CH4_5.md Sec 9 items 7-8;
-// studies/ellipsoid_flip/README.md lists each and its effect). The data a case file will carry for
-// this study (issue 11 item 6), as football.hpp does for Tables 4-3/4-4.
+// studies/ellipsoid_flip/README.md lists each and its effect). The study and fem-explicit take the
+// model from studies/ellipsoid_flip/ellipsoid_flip.toml (its two [[phase]]s); scene() states the
+// same model in C++, the reference that test ExplicitCase.EllipsoidCaseFileBuildsTheStudysModel
+// holds the case file to (bit for bit), as football.hpp does for Tables 4-3/4-4.
 //
 // Two phases, one scene each, the same mesh: the grasp (the object carried in -x at conveyor speed
 // to the drum centre while the hand turns to 180 deg at 1.5 s; no gravity) and the flip (restarted
 // from the grasp's state at 2 s: the drum spin held at 180 deg, the whole hand turned 135 deg about
-// the global z axis at 4.71 rad/s in 0.5 s, the object free, gravity on). Time is physical time
-// minus `start` (the model's t = 0, as football::Options::start).
+// the global z axis at 4.71 rad/s in 0.5 s, the object free, gravity on). hand::seen_from gives a
+// phase from a later start.
 #include "core/units.hpp"
 #include "hand/scene.hpp"
 
@@ -36,10 +38,6 @@ enum class Phase { grasp, flip };
 
 struct Options {
     Phase phase = Phase::grasp;
-    double start = 0.0;            // t0 [s]: the scene seen from physical time t0 (valid before contact)
-    double flip_sign = 1.0;        // +1: the flip about +z (Sec 9 item 8); -1 the other sense
-    EllipsoidGrid grid{};          // the football's O-grid: 512 hexahedra for the half
-    double decay = 0.0;            // c_d of Eq 2-35 (0: mu = mu_s = 0.4, the thesis's effective friction)
 };
 
 /// The scene of a phase. Grasp: object carried (v_x = -conveyor until spin_stop(), then held at 0:

@@ -1,9 +1,10 @@
 #pragma once
 // The football sweep of thesis Sec 4.2-4.3 as a hand::Scene: Table 4-3's boundary conditions, the
 // five conveyor cases of Table 4-4, and the inputs the text leaves out (THESIS_CH4_5.md Sec 9,
-// reconstructed; studies/football_sweep/README.md lists each and its effect). The data that a
-// case file will carry for this study (issue 11 item 6); the study and the benchmark build their
-// model from it.
+// reconstructed; studies/football_sweep/README.md lists each and its effect). The study and
+// fem-explicit take the model from studies/football_sweep/football_sweep.toml; scene() states the
+// same model in C++, the reference that test ExplicitCase.FootballCaseFileBuildsTheStudysModel holds
+// the case file to (bit for bit), and Table 4-4's cases are the study's changes to the file.
 #include <string>
 #include <utility>
 #include <vector>
@@ -26,31 +27,15 @@ inline const Vec3 semi_axes{122 * units::mm, 66 * units::mm, 66 * units::mm};
 struct Case {
     int id = 0;
     double t_switch = -1.0;
-    /// The pallet's speed over model time tau = t - t0 (Curve::steps: the step is exact).
-    Curve schedule(double t0 = 0.0) const;
+    /// The pallet's speed over time (Curve::steps: the step is exact).
+    Curve schedule() const;
 };
 std::vector<Case> table_4_4();
-
-struct Options {
-    DampingFrame frame = DampingFrame::absolute;
-    double roll_sign = 1.0;        // R_x sense (HandSpec::roll_sign): the mirror case is -1
-    double decay = 0.0;            // c_d of Eq 2-35 (0: mu = mu_s, the thesis's effective friction)
-    bool football = true;          // false: the hand alone
-    bool finger_pairs = false;     // finger-finger contact pairs (neighbour_pairs())
-    double start = 0.0;            // t0: the scene as seen from physical time t0 (model time t - t0)
-    EllipsoidGrid grid{};          // 512 elements, 678 nodes (Table 4-2: 512 / 677), inner block 0.4
-    /// false: the football's density is Table 4-2's 275 kg/m^3, the FE model's input (0.30 kg for the
-    /// half mesh); true: the raw weight 0.425 kg over the mesh volume (193 kg/m^3), the first
-    /// session's reconstruction (THESIS_CH4_5 Sec 10 item 2; study README).
-    bool raw_weight = false;
-};
 
 /// The fingers whose sweeps overlap: neighbours on a level, and upper over lower within 22.5 deg.
 std::vector<std::pair<std::string, std::string>> neighbour_pairs();
 
-/// The scene of case c. With o.start = t0 > 0 it is the thesis's set-up seen from t0 on: the drum
-/// already turned by omega t0 (fingers undeformed, spinning), the football and pallet moved by
-/// -fast t0, the schedule shifted; valid while nothing has touched before t0.
-Scene scene(const Case& c, const Options& o = {});
+/// The scene of case c from t = 0 (hand::seen_from gives it from a later start).
+Scene scene(const Case& c);
 
 }  // namespace fem::hand::football

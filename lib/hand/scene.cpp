@@ -44,6 +44,29 @@ private:
 
 }  // namespace
 
+Scene seen_from(Scene s, double t0) {
+    if (t0 == 0.0) return s;
+    if (!(t0 > 0.0)) throw InputError(fmt::format("hand scene: a start time must be >= 0, got {}", t0));
+    if (s.turn.omega.integral(t0) != 0.0)
+        throw InputError(fmt::format("hand scene: the hand has turned before the start time {} s", t0));
+    Drum& d = s.hand.drum;
+    d.initial_angle += d.omega.integral(t0);
+    d.omega = d.omega.shifted(t0);
+    s.turn.omega = s.turn.omega.shifted(t0);
+    for (auto& o : s.objects) {
+        if (o.carried_velocity != Vec3::Zero() && o.carried_scale.integral(t0) != t0)
+            throw InputError(fmt::format("hand scene: the carriage of '{}' changes before the start time {} s", o.part, t0));
+        o.centre += o.initial_velocity * t0;
+        o.carried_scale = o.carried_scale.shifted(t0);
+    }
+    for (auto& p : s.plates) {
+        p.centre += p.direction * p.speed.integral(t0);
+        p.speed = p.speed.shifted(t0);
+    }
+    s.gravity_curve = s.gravity_curve.shifted(t0);
+    return s;
+}
+
 HandModel::HandModel(const Scene& scene) : scene_(scene) {
     Mesh mesh = hand_mesh(scene_.hand);
     std::map<std::string, ElasticMaterial> material;

@@ -113,6 +113,15 @@ struct Scene {
     int drum_segments = 48;
 };
 
+/// The scene seen from physical time t0 on (the model's t = 0 is then t0): what a run that skips
+/// [0, t0) starts from, valid while nothing has touched before t0 (a study's judged run that starts
+/// shortly before the first contact, football_sweep and ellipsoid_flip). The drum is turned by the
+/// integral of its speed to t0 (the fingers undeformed, spinning with it), objects moved by their
+/// initial velocity x t0, plates by their motion to t0, and every curve (drum speed, turn, plate
+/// speeds, carriage, gravity) shifted by t0 (Curve::shifted). InputError when the hand's turn has
+/// turned before t0 or a carried object's carriage changed before t0 (neither can be skipped).
+Scene seen_from(Scene scene, double t0);
+
 /// The built model. Owns the mesh's model; contact interfaces are reachable by pair name
 /// "<slave> on <master>".
 class HandModel {

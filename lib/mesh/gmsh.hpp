@@ -44,9 +44,17 @@ public:
 };
 
 /// Reads a Gmsh .msh file (2.2 or 4.1, ASCII or binary) into a Mesh (see above for the rules).
+/// Gmsh reads it in a separate reader process (see gmsh.cpp), so a crash inside Gmsh, or a read that
+/// takes longer than the limit below, is an InputError too.
 /// Throws InputError for a missing or unreadable file, a malformed file, a file without elements,
 /// an unsupported element type, or a mesh that fails fem::validate (e.g. an inverted element).
 Mesh read_gmsh(const std::filesystem::path& path);
+
+/// How long Gmsh may take to read a file before read_gmsh refuses it as malformed: `base_seconds`
+/// plus `seconds_per_megabyte` per MB of the file; by default 30 s + 10 s/MB, a margin of 100x or
+/// more over Gmsh's reading speed. (libgmsh 4.8 spends minutes on a 1 kB binary MSH 4.1 file with a
+/// huge count: found by tests/fuzz/fuzz_gmsh.) The fuzz target and tests set shorter limits.
+void set_gmsh_read_time_limit(double base_seconds, double seconds_per_megabyte);
 
 /// Converts the current Gmsh model (the caller holds a GmshSession and has meshed or opened it).
 /// `source` names the model in error messages. Throws InputError when it has no elements.

@@ -190,8 +190,7 @@ void build_case_model(const ModalCase& c, const Mesh& mesh, Model& model) {
         }
         for (int b : blocks) {
             const std::string type = element_type(p, mesh.blocks[b]);
-            model.add_block(b, dofs_per_node(type),
-                            element_kernel(type, p.material, p.thickness, solid_options(c)));
+            add_element_block(model, b, type, p.material, p.thickness, solid_options(c));
         }
         covered.insert(blocks.begin(), blocks.end());
     }

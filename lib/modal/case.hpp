@@ -22,8 +22,8 @@
 //   material = "steel"
 //   thickness = 0.002           # only for shell parts (quad4, MITC4)
 //   element = "C3D8"            # formulation, named as CalculiX/Abaqus name it (modal/deck_run.hpp):
-//                               # hex8 "C3D8I" (incompatible modes, default) or "C3D8" (fully
-//                               # integrated trilinear); hex20 "C3D20" (3x3x3 Gauss, default) or
+//                               # hex8 "C3D8I" (incompatible modes as ccx's C3D8I, bubble
+//                               # DOFs with mass; default) or "C3D8" (fully integrated trilinear); hex20 "C3D20" (3x3x3 Gauss, default) or
 //                               # "C3D20R" (2x2x2); tet10 "C3D10"; tet4 "C3D4"; quad4 shells "S4"
 //
 //   [[supports]]

@@ -37,15 +37,27 @@ std::vector<std::string> element_types_for(ElementShape shape) {
 
 int dofs_per_node(std::string_view type) { return type == "S4" || type == "S4R" ? 6 : 3; }
 
-ElementKernel element_kernel(std::string_view type, const ElasticMaterial& m, double thickness, const SolidOptions& options) {
+void add_element_block(Model& model, int block, std::string_view type, const ElasticMaterial& m, double thickness,
+                       const SolidOptions& options) {
     SolidOptions o = options;
     if (type == "S4" || type == "S4R") {
         if (!(thickness > 0)) throw InputError("element type " + std::string(type) + " needs a shell thickness > 0");
-        return shell_kernel(thickness, m, o.mass);
+        model.add_block(block, 6, shell_kernel(thickness, m, o.mass));
+        return;
     }
+    if (type == "C3D8I" && o.mass == solid::MassKind::Consistent) {
+        // ccx's C3D8I: the bubble amplitudes are nine DOFs of each element, with mass.
+        model.add_block(block, 3, [m](std::span<const Vec3> x, int) {
+            solid::Hex8IncompatibleDofs e = solid::hex8_incompatible_dofs(x, m);
+            return ElementMatrices{std::move(e.stiffness), std::move(e.mass)};
+        }, 9);
+        return;
+    }
+    // With a lumped mass the bubbles carry none, and massless element DOFs are exactly the static
+    // condensation of the library's incompatible-modes brick.
     if (type == "C3D8" || type == "C3D8I") o.incompatible_modes = type == "C3D8I";
     if (type == "C3D20" || type == "C3D20R") o.hex20_reduced = type == "C3D20R";
-    return solid_kernel(deck::shape_of_type(type), m, o);
+    model.add_block(block, 3, solid_kernel(deck::shape_of_type(type), m, o));
 }
 
 void build_deck_model(const deck::Deck& d, Model& model) {
@@ -56,7 +68,7 @@ void build_deck_model(const deck::Deck& d, Model& model) {
         // ccx integrates the tetrahedra's mass with their stiffness rule (4 points C3D10, 1 point C3D4).
         o.tet10_mass_rule = solid::Tet10MassRule::FourPoint;
         o.tet4_mass_rule = solid::Tet4MassRule::Centroid;
-        model.add_block(static_cast<int>(b), dofs_per_node(type), element_kernel(type, d.materials.at(s.material), s.thickness, o));
+        add_element_block(model, static_cast<int>(b), type, d.materials.at(s.material), s.thickness, o);
     }
     for (const deck::Boundary& b : d.boundaries) {
         DofMask mask = 0;

@@ -11,9 +11,16 @@
 //   C3D10   tet10, 4-point stiffness rule; consistent mass with the same 4-point rule, as ccx
 //           (Tet10MassRule::FourPoint; likewise)
 //   C3D8    hex8, fully integrated trilinear brick (2x2x2 Gauss): the same element as ccx's
-//   C3D8I   hex8 with incompatible modes (Wilson-Taylor, statically condensed). ccx's C3D8I
-//           (shape8hu.f, three extra nodes per element) is a different incompatible-modes
-//           element: the frequencies differ by percents on coarse meshes (tests/deck)
+//   C3D8I   hex8 with incompatible modes as ccx builds it: Wilson-Taylor's nine bubble modes (with
+//           Taylor's centre-Jacobian correction) kept as nine DOFs of each element (ccx: three extra
+//           nodes) that carry mass, the mass of the whole field with the 2x2x2 rule
+//           (solid::hex8_incompatible_dofs; ccx's shape8humass.f). The library's brick with the
+//           bubbles condensed (what the studies use, SolidOptions::incompatible_modes) has the same
+//           stiffness and no bubble mass: on the peer test's 10 x 2 x 3 brick it is up to 3.6 % off
+//           ccx, this one identical to ccx's 7 digits (tests/deck/peer_ccx_decks.cpp). With a lumped
+//           mass (case files) the bubbles carry none, which is exactly the condensed brick.
+//           The price of ccx's way: 9 more equations per element (a clamped 80 x 8 x 8 brick: 65,520
+//           equations instead of 19,440, 2-3 times the solve time).
 //   C3D20   hex20 serendipity brick, 3x3x3 Gauss for stiffness and mass
 //   C3D20R  the same with 2x2x2 Gauss for both, as ccx
 //   S4, S4R MITC4 shell, 6 DOF per node (ccx expands shells into C3D8I bricks: a different
@@ -29,9 +36,10 @@
 
 namespace fem::modal {
 
-/// The element kernel of deck type `type` (table above) for material m; `thickness` for shells.
-/// `options.mass` and `options.tet10_mass_rule` apply where the type has a choice.
-ElementKernel element_kernel(std::string_view type, const ElasticMaterial& m, double thickness, const SolidOptions& options);
+/// Adds block `block` of `model` as elements of deck type `type` (table above) of material m;
+/// `thickness` for shells. `options.mass` and the tet mass rules apply where the type has a choice.
+void add_element_block(Model& model, int block, std::string_view type, const ElasticMaterial& m, double thickness,
+                       const SolidOptions& options);
 /// DOFs per node of a deck type: 6 for shells, 3 for solids.
 int dofs_per_node(std::string_view type);
 /// The deck types that fit a mesh shape (for case files: hex8 -> C3D8I, C3D8; the first is the default).

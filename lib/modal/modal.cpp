@@ -10,6 +10,8 @@
 
 #include <memory>
 
+#include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
 #include <Eigen/SparseCholesky>
 #ifdef FEM_HAVE_CHOLMOD
 #include <Eigen/CholmodSupport>
@@ -163,6 +165,40 @@ std::string Conditioning::describe() const {
                        k_min, k_max, k_max / k_min, m_min, m_max, m_max / m_min, lambda_max);
 }
 
+namespace {
+
+// The dense fallback of a small model whose Lanczos run broke down: a singular mass (CalculiX's C3D8I
+// puts none on some combinations of its bubble and nodal DOFs) bounds the Krylov space of
+// (K - sigma M)^-1 M by the rank of M, and a basis larger than that (a model of a few elements)
+// breaks down. With K - sigma M = L L^T, the eigenvalues mu of L^-1 M L^-T are 1 / (lambda - sigma),
+// mu = 0 for the massless directions (lambda infinite). Returns false when the model is too large
+// for dense matrices, K - sigma M is not positive definite (a shift inside the spectrum) or it has
+// fewer finite eigenvalues than asked; fills r.eigenvalues (ascending) and r.shapes otherwise.
+bool dense_modes(const SpMat& K, const SpMat& M, int modes, ModalResult& r) {
+    const Eigen::Index n = K.rows();
+    if (n > 2000) return false;
+    const Eigen::MatrixXd Md = Eigen::MatrixXd(M).selfadjointView<Eigen::Lower>();
+    const Eigen::MatrixXd A = Eigen::MatrixXd(Eigen::MatrixXd(K).selfadjointView<Eigen::Lower>()) - r.shift * Md;
+    const Eigen::LLT<Eigen::MatrixXd> llt(A);
+    if (llt.info() != Eigen::Success) return false;
+    Eigen::MatrixXd C = llt.matrixL().solve(Md);
+    C = llt.matrixL().solve(Eigen::MatrixXd(C.transpose()));
+    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(0.5 * (C + C.transpose()));
+    if (es.info() != Eigen::Success) return false;
+    const Eigen::VectorXd& mu = es.eigenvalues();  // ascending: the largest mu (nearest the shift) last
+    if (!(mu(n - modes) > 1e-12 * std::abs(mu(n - 1)))) return false;
+    r.eigenvalues.resize(modes);
+    r.shapes.resize(n, modes);
+    for (int k = 0; k < modes; ++k) {
+        r.eigenvalues(k) = r.shift + 1.0 / mu(n - 1 - k);
+        r.shapes.col(k) = llt.matrixU().solve(es.eigenvectors().col(n - 1 - k));
+    }
+    r.factorization = "dense LL^T (Lanczos broke down)";
+    return true;
+}
+
+}  // namespace
+
 ModalResult solve_modes(const SpMat& K, const SpMat& M, const ModalOptions& o) {
     const int n = static_cast<int>(K.rows());
     if (K.rows() != K.cols() || M.rows() != n || M.cols() != n) throw InputError("modal: K and M must be square and of equal size");
@@ -199,6 +235,7 @@ ModalResult solve_modes(const SpMat& K, const SpMat& M, const ModalOptions& o) {
     using Solver = Spectra::SymGEigsShiftSolver<ShiftInvert, MassProduct, Spectra::GEigsMode::ShiftInvert>;
     std::optional<Solver> solver;
     Eigen::Index nconv = 0;
+    std::string lanczos_failure;
     try {
         // The constructor factorizes K - sigma M (through set_shift).
         solver.emplace(op, bop, o.modes, ncv, r.shift);
@@ -209,21 +246,24 @@ ModalResult solve_modes(const SpMat& K, const SpMat& M, const ModalOptions& o) {
         solver->init();
         // Largest |1 / (lambda - sigma)| = eigenvalues nearest the shift; returned in ascending lambda.
         nconv = solver->compute(Spectra::SortRule::LargestMagn, o.max_iterations, o.tolerance, Spectra::SortRule::SmallestAlge);
+        if (solver->info() != Spectra::CompInfo::Successful || nconv < o.modes)
+            lanczos_failure = fmt::format("Lanczos converged {} of {} modes in {} restarts (basis {}); raise max_iterations or "
+                                          "the basis size ({})",
+                                          nconv, o.modes, solver->num_iterations(), ncv, cond.describe());
     } catch (const InputError&) {
         throw;
     } catch (const std::exception& e) {  // Spectra's own failures (a tridiagonal eigensolve that does not converge)
-        throw SolverError(fmt::format("modal: the eigensolver failed ({}); the problem is ill-conditioned: {}", e.what(),
-                                      cond.describe()));
+        lanczos_failure = fmt::format("the eigensolver failed ({}); the problem is ill-conditioned: {}", e.what(), cond.describe());
     }
-    auto& eigs = *solver;
     r.solve_seconds = seconds_since(t0);
-    r.iterations = static_cast<int>(eigs.num_iterations());
-    r.operations = op.operations();
-    if (eigs.info() != Spectra::CompInfo::Successful || nconv < o.modes)
-        throw SolverError(fmt::format("modal: Lanczos converged {} of {} modes in {} restarts (basis {}); raise "
-                                      "max_iterations or the basis size ({})",
-                                      nconv, o.modes, r.iterations, ncv, cond.describe()));
-    r.eigenvalues = eigs.eigenvalues();
+    if (lanczos_failure.empty()) {
+        r.iterations = static_cast<int>(solver->num_iterations());
+        r.operations = op.operations();
+        r.eigenvalues = solver->eigenvalues();
+        r.shapes = solver->eigenvectors();
+    } else if (!dense_modes(K, M, o.modes, r)) {
+        throw SolverError("modal: " + lanczos_failure);
+    }
     if (r.shift == 0.0) {
         // A factorization can pass a singular K when round-off leaves its zero pivots slightly
         // positive; the zero eigenvalues then show up here. The scale is the largest K_ii / M_ii
@@ -238,7 +278,6 @@ ModalResult solve_modes(const SpMat& K, const SpMat& M, const ModalOptions& o) {
                                          "supports or use shift (a negative shift_hz)",
                                          rigid));
     }
-    r.shapes = eigs.eigenvectors();
     r.frequencies_hz.resize(o.modes);
     r.residuals.resize(o.modes);
     const auto Ks = K.selfadjointView<Eigen::Lower>();
@@ -357,8 +396,9 @@ void write_results(const std::filesystem::path& dir, const Mesh& mesh, const Ass
 
 std::string summary(const AssembledSystem& system, const ModalResult& r) {
     std::ostringstream s;
-    s << fmt::format("modal: {} nodes, {} DOFs ({} fixed, {} coupled out), {} equations\n", system.dofs.node_count(),
-                     system.dofs.size(), system.reduction.fixed, system.reduction.coupled, system.size());
+    s << fmt::format("modal: {} nodes, {} DOFs ({} fixed, {} coupled out), {} equations{}\n", system.dofs.node_count(),
+                     system.dofs.size(), system.reduction.fixed, system.reduction.coupled, system.size(),
+                     system.internal_dofs > 0 ? fmt::format(" ({} of them element-internal)", system.internal_dofs) : "");
     s << fmt::format("  K nonzeros (lower) {}, factor nonzeros {}, shift {:g} rad^2/s^2\n", system.stiffness.nonZeros(),
                      r.factor_nonzeros, r.shift);
     s << fmt::format("  factorization ({}) {:.3f} s, Lanczos {:.3f} s ({} restarts, {} solves)\n", r.factorization, r.factor_seconds, r.solve_seconds,

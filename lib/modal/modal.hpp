@@ -76,7 +76,10 @@ struct Conditioning {
 /// Lowest `options.modes` pairs of the generalized problem with K, M given as LOWER triangles (as
 /// AssembledSystem holds them). Throws InputError for a singular model without a shift, a shift at
 /// an eigenvalue, a shift or matrices that overflow (with the Conditioning), SolverError with the
-/// Conditioning when the eigensolver fails or Lanczos does not converge.
+/// Conditioning when the eigensolver fails or Lanczos does not converge. A model of at most 2000
+/// equations whose Lanczos run breaks down (a singular mass bounds its Krylov space: CalculiX's C3D8I
+/// on a few elements) is solved with dense matrices instead when K - sigma M is positive definite
+/// (ModalResult::factorization then says so).
 ModalResult solve_modes(const Eigen::SparseMatrix<double>& stiffness, const Eigen::SparseMatrix<double>& mass,
                         const ModalOptions& options);
 ModalResult solve_modes(const AssembledSystem& system, const ModalOptions& options);

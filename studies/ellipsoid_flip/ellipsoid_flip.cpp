@@ -1,7 +1,8 @@
 // Study ellipsoid_flip: the compliant hand grasps an ellipsoid carried on the conveyor, then flips
 // it (thesis Sec 4.4, Tables 4-5/4-6, Figs 4-13..4-18).
 //
-// Model (lib/hand/ellipsoid.hpp builds both phases from plain data; reconstructions in README.md):
+// Model (loaded from studies/ellipsoid_flip/ellipsoid_flip.toml, the case file fem-explicit runs,
+// with its two phases; built by lib/hand; reconstructions in README.md):
 //   - the hand of Sec 4.2 (the football study's): the stepped drum turning at 20 rpm about -y and
 //     stopping at 180 deg (pi / omega = 1.5 s), five Table 4-1 fingers (725 / 500 hexahedra),
 //     absolute mass damping alpha 180 / 600 (LS-DYNA *DAMPING_PART_MASS);
@@ -27,11 +28,12 @@
 
 #include "check/study.hpp"
 #include "contact/explicit_contact.hpp"
+#include "core/error.hpp"
 #include "core/units.hpp"
 #include "damping/signal.hpp"
 #include "explicit/parallel.hpp"
 #include "explicit/solver.hpp"
-#include "hand/ellipsoid.hpp"
+#include "explicit_case/case_file.hpp"
 #include "hand/scene.hpp"
 #include "io/atomic_file.hpp"
 #include "io/table.hpp"
@@ -52,11 +54,9 @@ const std::vector<double> kSnapshots = {1.0, 1.2, 1.3, 1.4, 1.5, 1.55,          
                                         2.0, 2.125, 2.25, 2.375, 2.5, 3.0};            // Fig 4-17 (flip)
 const Vec3 kDrumCentre{0.0, 50.8 * mm, 0.0};  // Fig 4-18's drum centre point (mid-height of the drum axis)
 
-ellipsoid::Options phase(ellipsoid::Phase p) {
-    ellipsoid::Options o;
-    o.phase = p;
-    o.start = kStart;
-    return o;
+// The scene of phase k of the case file (0: grasp, 1: flip, the object released) from kStart on.
+Scene phase_scene(const explicit_case::ExplicitCase& c, std::size_t k) {
+    return seen_from(explicit_case::hand_scene(explicit_case::phase_case(c, k)), kStart);
 }
 
 // What the run records: rows every kRow, stress bins every kSample, snapshots.
@@ -200,15 +200,18 @@ int main(int argc, char** argv) {
         // ELLIPSOID_END=<s> caps the simulated time (development).
         const double end_cap = std::getenv("ELLIPSOID_END") ? std::atof(std::getenv("ELLIPSOID_END")) : 1e9;
 
+        const auto c = explicit_case::read_case(study.source_dir() / "studies/ellipsoid_flip/ellipsoid_flip.toml");
+        if (c.phases.size() != 2) throw InputError(c.source + ": the study expects two phases (grasp, flip)");
+        const double grasp_end = c.phases[1].start, flip_end = c.control.end_time;  // 2 s and 3 s (Tables 4-5, 4-6)
+
         // --- grasp: the judged window, and with --full on to 2 s with a dump for the flip ---
-        HandModel grasp(ellipsoid::scene(phase(ellipsoid::Phase::grasp)));
+        HandModel grasp(phase_scene(c, 0));
         Recorder rec;
-        const double grasp_end = std::min(end_cap, full ? ellipsoid::grasp_end + 2 * kSample : kWindow);
-        ExplicitOptions opt = solver_options("grasp", grasp_end);
+        ExplicitOptions opt = solver_options("grasp", std::min(end_cap, full ? grasp_end + 2 * kSample : kWindow));
         const auto dumps = out / "restart";
         if (full) {
             opt.restart_dir = dumps;
-            opt.restart_times = {ellipsoid::grasp_end - kStart};
+            opt.restart_times = {grasp_end - kStart};
         }
         ExplicitSolver solver(grasp.model(), opt);
         solver.observer = [&](const ExplicitSolver& s) { rec.sample(s, grasp); };
@@ -218,8 +221,8 @@ int main(int argc, char** argv) {
         // --- flip (--full): restart from the grasp's state at 2 s with the flip's scene ---
         std::optional<RunSummary> fsum;
         if (full && !solver.restart_files().empty()) {
-            HandModel flip(ellipsoid::scene(phase(ellipsoid::Phase::flip)));
-            ExplicitOptions fopt = solver_options("flip", std::min(end_cap, ellipsoid::flip_end));
+            HandModel flip(phase_scene(c, 1));
+            ExplicitOptions fopt = solver_options("flip", std::min(end_cap, flip_end));
             fopt.restart_from = solver.restart_files().front();
             ExplicitSolver fs(flip.model(), fopt);
             fs.observer = [&](const ExplicitSolver& s) { rec.sample(s, flip); };
@@ -289,7 +292,7 @@ int main(int argc, char** argv) {
         // --- --full: the flip (shown) ---
         if (fsum) {
             std::size_t k0 = 0;
-            while (k0 + 1 < rec.row_t.size() && rec.row_t[k0] < ellipsoid::grasp_end - 1e-9) ++k0;
+            while (k0 + 1 < rec.row_t.size() && rec.row_t[k0] < grasp_end - 1e-9) ++k0;
             auto slip = [&](std::size_t k) {
                 return 1e3 * std::hypot(rec.hx[k] - rec.hx[k0], rec.hy[k] - rec.hy[k0], rec.hz[k] - rec.hz[k0]);
             };

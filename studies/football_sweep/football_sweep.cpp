@@ -2,8 +2,8 @@
 // (thesis Sec 4.2-4.3, Tables 4-1..4-4, Figs 4-1, 4-3..4-11; experiment of Yin 2003, whose curves
 // the text does not print).
 //
-// Model (the half model of Table 4-2, built by lib/hand from plain data; reconstructions in
-// README.md):
+// Model (the half model of Table 4-2, loaded from studies/football_sweep/football_sweep.toml, the
+// case file fem-explicit runs, and built by lib/hand; reconstructions in README.md):
 //   - the hand: the stepped drum turning at 20 rpm about -y, five Table 4-1 fingers (hexahedral
 //     mapped 5 x 5 sections, 725 / 500 elements as Table 4-2), roots tied to the drum, absolute
 //     mass damping alpha 180 / 600 (LS-DYNA *DAMPING_PART_MASS);
@@ -14,6 +14,9 @@
 //   - contact: every finger with the football (two-way), neighbouring fingers with each other, the
 //     football with the pallet and with the drum; mu = mu_s = 0.4 (Eq 2-35 with c_d = 0);
 //   - gravity 9.81 m/s^2 in -y.
+//
+// What the study adds to the case file: Table 4-4's cases (each replaces the pallet's speed schedule;
+// the file's is Case 4), the damping-frame and mirror variants, the run plan, checks and figures.
 //
 // Run plan (README "Cost"): the five cases of Table 4-4 are the same run until the earliest speed
 // switch (Case 5, 1.06 s). One process runs that common prefix, then fork()s one process per case
@@ -44,6 +47,7 @@
 #include "damping/signal.hpp"
 #include "explicit/parallel.hpp"
 #include "explicit/solver.hpp"
+#include "explicit_case/case_file.hpp"
 #include "hand/football.hpp"
 #include "hand/scene.hpp"
 #include "io/atomic_file.hpp"
@@ -65,14 +69,31 @@ extern "C" void request_stop_signal(int) { g_stop = 1; }
 
 const std::vector<std::string> kFingers = {"A", "B", "C", "D", "E"};
 using football::Case;
-using Variant = football::Options;
 const std::vector<Case> kCases = football::table_4_4();
 const auto kFingerPairs = football::neighbour_pairs();
 
-// The study's scene of case c from physical time t0 on (lib/hand/football.hpp).
-Scene football_scene(const Case& c, Variant v, double t0 = 0.0) {
-    v.start = t0;
-    return football::scene(c, v);
+// A variant of the case file's model.
+struct Variant {
+    DampingFrame frame = DampingFrame::absolute;
+    double roll_sign = 1.0;        // R_x sense (HandSpec::roll_sign): the mirror case is -1
+    bool football = true;          // false: the hand alone
+};
+
+// The case file's scene (football_sweep.toml: Case 4 from t = 0), read once in main().
+Scene g_case_scene;
+
+// The study's scene of Table 4-4 case c from physical time t0 on: the case file's model with the
+// case's pallet schedule (Table 4-4: 18 in/s, 10 in/s from its switch time) and the variant.
+Scene football_scene(const Case& c, const Variant& v, double t0 = 0.0) {
+    Scene s = g_case_scene;
+    s.damping_frame = v.frame;
+    s.hand.roll_sign = v.roll_sign;
+    if (v.football) {
+        s.plates.at(0).speed = c.schedule();
+    } else {
+        s.objects.clear(), s.plates.clear(), s.contacts.clear();
+    }
+    return seen_from(std::move(s), t0);
 }
 
 // Contact statistics per pair and per finger, accumulated every cycle by the observer.
@@ -534,6 +555,8 @@ int main(int argc, char** argv) {
         std::signal(SIGUSR1, request_stop_signal);
         // Development switches: FOOTBALL_END=<s> caps the simulated time, FOOTBALL_ONLY=<case> runs one
         // case (no checks), FOOTBALL_MIRROR=1 with it: the mirror R_x roll sign.
+        g_case_scene = explicit_case::hand_scene(
+            explicit_case::read_case(study.source_dir() / "studies/football_sweep/football_sweep.toml"));
         RunOptions o;
         o.window = kWindow;  // the judged window (README "Cost"): checks use t <= kWindow only
         // The judged runs start at kStart (README "Cost": the fingers spin up undeformed and settle

@@ -4,6 +4,7 @@
 #include <Eigen/Dense>
 
 #include "assembly/model.hpp"
+#include "assembly/static_solve.hpp"
 #include "core/error.hpp"
 
 using namespace fem;
@@ -128,4 +129,35 @@ TEST(Assembly, SixDofBlocksPlugIn) {
     EXPECT_DOUBLE_EQ(sys.stiffness.coeff(sys.dofs.dof(1, RY), sys.dofs.dof(1, RY)), 2.0);  // middle node: 2 elements
     EXPECT_DOUBLE_EQ(sys.stiffness.coeff(sys.dofs.dof(0, RY), sys.dofs.dof(0, RY)), 1.0);
     EXPECT_THROW(Model(mesh).add_solid_part("plate", kSteel), InputError);  // no solid quad4
+}
+
+TEST(Assembly, ElementInternalDofsFollowTheNodalEquations) {
+    // The incompatible-modes brick with its bubbles as element DOFs (CalculiX's C3D8I) on a clamped
+    // 4 x 1 x 1 beam: the internal DOFs come after the nodal equations, each element's own, and a
+    // static solve gives the same nodal displacements as the statically condensed brick.
+    const Mesh mesh = box_hex8(0.4, 0.1, 0.1, 4, 1, 1, "beam");
+    Model kept(mesh), condensed(mesh);
+    kept.add_block(0, 3, [](std::span<const Vec3> x, int) {
+        solid::Hex8IncompatibleDofs e = solid::hex8_incompatible_dofs(x, kSteel);
+        return ElementMatrices{e.stiffness, e.mass};
+    }, 9);
+    condensed.add_solid_part("beam", kSteel);
+    for (Model* m : {&kept, &condensed}) m->fix_node_set("x0");
+    const AssembledSystem sk = kept.assemble(), sc = condensed.assemble();
+    EXPECT_EQ(sk.reduction.size, sc.size());
+    EXPECT_EQ(sk.internal_dofs, 4 * 9);
+    EXPECT_EQ(sk.size(), sc.size() + 4 * 9);
+    // Element 1's bubbles touch element 1's nodes only, never element 0's or 2's own DOFs.
+    const Eigen::MatrixXd k = dense(sk.stiffness);
+    const int first = sk.reduction.size + 9;
+    EXPECT_NE(k(first, first), 0.0);
+    EXPECT_EQ(k(first + 9, first), 0.0);
+    EXPECT_EQ(k(first, first - 9), 0.0);
+    std::vector<Vec3> force(mesh.node_count(), Vec3::Zero());
+    for (int n : mesh.node_set("x1")) force[n] = Vec3(100.0, -200.0, 300.0);
+    const std::vector<Vec3> uk = solve_linear_static(sk, force), uc = solve_linear_static(sc, force);
+    double diff = 0, size = 0;
+    for (int n = 0; n < mesh.node_count(); ++n) diff = std::max(diff, (uk[n] - uc[n]).norm()), size = std::max(size, uc[n].norm());
+    EXPECT_LT(diff, 1e-10 * size);
+    EXPECT_THROW(kept.add_block(0, 3, nullptr, -1), InputError);
 }

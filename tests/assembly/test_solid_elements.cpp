@@ -208,3 +208,62 @@ TEST(SolidElements, Hex20PassesThePatchTest) {
         EXPECT_LT((ui - ui_exact).norm(), 1e-9 * ui_exact.norm()) << "reduced " << reduced;
     }
 }
+
+// CalculiX's C3D8I (hex8_incompatible_dofs): the incompatible-modes brick with its nine bubble
+// amplitudes kept as DOFs with mass.
+TEST(SolidElements, Hex8IncompatibleDofsCondenseToTheIncompatibleBrick) {
+    const auto x = distorted_hex();
+    const solid::Hex8IncompatibleDofs e = solid::hex8_incompatible_dofs(x, kSteel);
+    ASSERT_EQ(e.stiffness.rows(), 33);
+    ASSERT_EQ(e.mass.rows(), 33);
+    EXPECT_LT((e.stiffness - e.stiffness.transpose()).norm(), 1e-12 * e.stiffness.norm());
+    EXPECT_LT((e.mass - e.mass.transpose()).norm(), 1e-12 * e.mass.norm());
+    // Six rigid-body modes, none more: every bubble is strained.
+    EXPECT_EQ(zero_modes(e.stiffness), 6);
+    // Static condensation of the bubbles is the library's incompatible-modes brick.
+    const Eigen::MatrixXd kuu = e.stiffness.topLeftCorner(24, 24), kua = e.stiffness.topRightCorner(24, 9);
+    const Eigen::MatrixXd kaa = e.stiffness.bottomRightCorner(9, 9);
+    const Eigen::MatrixXd condensed = kuu - kua * kaa.ldlt().solve(kua.transpose());
+    const Eigen::MatrixXd brick = solid::hex8_stiffness(x, kSteel, true);
+    EXPECT_LT((condensed - brick).norm(), 1e-12 * brick.norm());
+    // And the nodal block is the trilinear brick's.
+    EXPECT_LT((kuu - solid::hex8_stiffness(x, kSteel, false)).norm(), 1e-12 * kuu.norm());
+}
+
+TEST(SolidElements, Hex8IncompatibleDofsPassThePatchTest) {
+    // Patch test (Taylor, Beresford & Wilson 1976): nodal values of a linear field u = G x leave the
+    // bubbles unloaded (K_au u = 0, so they stay at zero) and carry the exact constant-strain energy,
+    // on a distorted element.
+    Mat3 G;
+    G << 1e-3, 2e-4, -1e-4, 3e-4, -5e-4, 2e-4, 0.0, 1e-4, 7e-4;
+    const auto x = distorted_hex();
+    const solid::Hex8IncompatibleDofs e = solid::hex8_incompatible_dofs(x, kSteel);
+    Eigen::VectorXd u = Eigen::VectorXd::Zero(33);
+    u.head(24) = linear_field(x, G);
+    const Eigen::VectorXd f = e.stiffness * u;
+    EXPECT_LT(f.tail(9).norm(), 1e-12 * f.head(24).norm());
+    const Mat3 eps = 0.5 * (G + G.transpose());
+    Eigen::Matrix<double, 6, 1> v;
+    v << eps(0, 0), eps(1, 1), eps(2, 2), 2 * eps(0, 1), 2 * eps(1, 2), 2 * eps(2, 0);
+    const double w = solid::hex8_volume(x) * v.dot(solid::elasticity_matrix(kSteel) * v);
+    EXPECT_NEAR(u.dot(f), w, 1e-10 * w);
+}
+
+TEST(SolidElements, Hex8IncompatibleDofsMassIsCalculixs) {
+    // Nodal block: the consistent trilinear mass. Bubbles: with the 2x2x2 rule each is 2/3 at every
+    // point, so a bubble carries 4/9 of the element mass (parallelepiped; the exact integral would give
+    // 8/15) and couples with a node by 2/3 of the node's consistent share, 1/12 of the mass.
+    const std::vector<Vec3> box = {Vec3(0, 0, 0), Vec3(0.5, 0, 0), Vec3(0.5, 0.2, 0), Vec3(0, 0.2, 0),
+                                   Vec3(0, 0, 0.3), Vec3(0.5, 0, 0.3), Vec3(0.5, 0.2, 0.3), Vec3(0, 0.2, 0.3)};
+    const double mass = kSteel.density * 0.5 * 0.2 * 0.3;
+    const solid::Hex8IncompatibleDofs e = solid::hex8_incompatible_dofs(box, kSteel);
+    EXPECT_LT((e.mass.topLeftCorner(24, 24) - solid::hex8_mass(box, kSteel.density)).norm(), 1e-12 * mass);
+    for (int k = 0; k < 3; ++k)
+        for (int d = 0; d < 3; ++d) {
+            const int i = 24 + 3 * k + d;
+            EXPECT_NEAR(e.mass(i, i), 4.0 / 9 * mass, 1e-12 * mass);
+            for (int l = 0; l < 3; ++l) EXPECT_NEAR(e.mass(i, 24 + 3 * l + d), 4.0 / 9 * mass, 1e-12 * mass);
+            for (int a = 0; a < 8; ++a) EXPECT_NEAR(e.mass(i, 3 * a + d), mass / 12, 1e-12 * mass);
+            EXPECT_EQ(e.mass(i, 24 + 3 * k + (d + 1) % 3), 0.0);  // components do not couple
+        }
+}

@@ -81,3 +81,19 @@ TEST(Curve, BadPointsAreRefusedWithTheCurveName) {
     EXPECT_THROW(Curve::steps({{0, 1}, {0, 2}}), InputError);
     EXPECT_THROW(Curve::pulse(1.0, 0.5), InputError);
 }
+
+// The curve seen from t0: c'(tau) = c(tau + t0) for a ramp, a step schedule and a constant; the
+// points before t0 collapse into one at 0, so a shifted schedule is the schedule written from t0.
+TEST(Curve, ShiftedIsTheCurveFromT0) {
+    const Curve ramp({{0.0, 0.0}, {1.0, 2.0}, {3.0, 2.0}, {3.0, -1.0}, {4.0, 0.0}});
+    for (double t0 : {0.0, 0.5, 1.0, 3.0, 5.0}) {
+        const Curve s = ramp.shifted(t0);
+        for (double tau : {0.0, 0.25, 0.5, 1.7, 2.5, 2.99, 3.5, 6.0})
+            EXPECT_NEAR(s(tau), ramp(tau + t0), 1e-15) << "t0 " << t0 << " tau " << tau;
+        EXPECT_NEAR(s.integral(2.0), ramp.integral(t0 + 2.0) - ramp.integral(t0), 1e-12) << "t0 " << t0;
+    }
+    const Curve steps = Curve::steps({{0.0, 0.4572}, {1.19, 0.254}});
+    EXPECT_EQ(steps.shifted(0.95).points(), Curve::steps({{0.0, 0.4572}, {1.19 - 0.95, 0.254}}).points());
+    EXPECT_EQ(Curve::constant(2.0).shifted(0.7).points(), Curve::constant(2.0).points());
+    EXPECT_EQ(Curve().shifted(0.7)(3.0), 1.0);
+}

@@ -112,9 +112,7 @@ TEST(Hand, PalletFollowsTable44Schedule) {
     const double x0 = hm.plate_centre("pallet", 0.0).x();
     EXPECT_NEAR(x0 - hm.plate_centre("pallet", 3.0).x(), football::fast * 1.19 + football::slow * 1.81, 1e-12);
     // The same scene seen from t0 = 0.7 s: the pallet already moved, the switch at model time 0.49 s.
-    football::Options later;
-    later.start = 0.7;
-    HandModel hl(football::scene(c4, later));
+    HandModel hl(seen_from(football::scene(c4), 0.7));
     EXPECT_NEAR(hl.plate_centre("pallet", 3.0 - 0.7).x(), hm.plate_centre("pallet", 3.0).x(), 1e-12);
 }
 
@@ -205,9 +203,7 @@ TEST(Hand, EllipsoidGraspStopsAtHalfTurnAndFlipTurnsTheHand) {
     // The object reaches x = 0 when the drum stops: its start is the conveyor's travel in that time.
     EXPECT_NEAR(ellipsoid::centre().x() - ellipsoid::conveyor * ellipsoid::spin_stop(), 0.0, 1e-15);
     // The same scene from t0 = 1.0 s: the hand turned by omega t0, motions shifted.
-    ellipsoid::Options later;
-    later.start = 1.0;
-    HandModel hl(ellipsoid::scene(later));
+    HandModel hl(seen_from(ellipsoid::scene(), 1.0));
     const Mat3 R_later = hl.drum_motion().pose(1.0).R;  // model time 1.0 = 2.0 s: turned by omega (1.5 s - 1.0 s)
     const double turned = std::acos(std::clamp(0.5 * (R_later.trace() - 1.0), -1.0, 1.0));
     EXPECT_NEAR(turned, ellipsoid::drum_speed * (ellipsoid::spin_stop() - 1.0), 1e-9);
@@ -225,8 +221,7 @@ TEST(Hand, EllipsoidGraspStopsAtHalfTurnAndFlipTurnsTheHand) {
 TEST(Hand, FlipSceneRestartsFromAGraspDump) {
     const auto dir = std::filesystem::temp_directory_path() / fmt::format("hand-flip-restart-{}", ::getpid());
     ellipsoid::Options g;
-    g.start = 1.0;
-    HandModel grasp(ellipsoid::scene(g));
+    HandModel grasp(seen_from(ellipsoid::scene(g), 1.0));
     ExplicitOptions opt;
     opt.end_time = 4e-4;
     opt.print_summary = false;
@@ -239,7 +234,7 @@ TEST(Hand, FlipSceneRestartsFromAGraspDump) {
     ASSERT_EQ(gs.restart_files().size(), 1u);
     ellipsoid::Options f = g;
     f.phase = ellipsoid::Phase::flip;
-    HandModel flip(ellipsoid::scene(f));
+    HandModel flip(seen_from(ellipsoid::scene(f), 1.0));
     ExplicitOptions fopt = opt;
     fopt.restart_times.clear();
     fopt.restart_from = gs.restart_files().front();
@@ -251,4 +246,21 @@ TEST(Hand, FlipSceneRestartsFromAGraspDump) {
     const int n = flip.part_nodes("ellipsoid")[0];
     EXPECT_NEAR(fs.state().v[n].x(), -ellipsoid::conveyor, 1e-6);
     std::filesystem::remove_all(dir);
+}
+
+// seen_from(scene, t0): drum turned by its speed's integral, objects and plates moved, curves
+// shifted; a hand that has turned before t0 cannot be skipped to t0.
+TEST(Hand, SeenFromMovesTheSceneToT0) {
+    const Scene s = football::scene(football::table_4_4()[3]);
+    const Scene l = seen_from(s, 0.5);
+    EXPECT_DOUBLE_EQ(l.hand.drum.initial_angle, s.hand.drum.omega(0.0) * 0.5);
+    EXPECT_DOUBLE_EQ(l.objects[0].centre.x(), s.objects[0].centre.x() - football::fast * 0.5);
+    EXPECT_DOUBLE_EQ(l.plates[0].centre.x(), s.plates[0].centre.x() - football::fast * 0.5);
+    EXPECT_EQ(l.plates[0].speed(1.19 - 0.5), football::slow);
+    Scene turned = s;
+    turned.turn.omega = Curve::constant(1.0);
+    EXPECT_THROW(seen_from(turned, 0.5), InputError);
+    Scene carried = ellipsoid::scene();
+    EXPECT_NO_THROW(seen_from(carried, 1.0));
+    EXPECT_THROW(seen_from(carried, 1.6), InputError);  // the carriage stopped at 1.5 s
 }

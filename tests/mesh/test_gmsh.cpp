@@ -3,10 +3,12 @@
 // node order and errors.
 #include <gtest/gtest.h>
 #include <gmsh.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <atomic>
+#include <cerrno>
 #include <fstream>
 
 #include "core/error.hpp"
@@ -274,8 +276,66 @@ TEST(ReadGmsh, AFailedReadDoesNotSpoilTheNextOne) {
     write_text(dir.file("tet.msh"), tet);
     write_text(dir.file("short.msh"), "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n4\n1 0 0 0\n2 1 0 0\n3 0 1 0\n"
                                       "4 0 0 1\n$EndNodes\n$Elements\n1\n1 4 2 1 1 1 2\n$EndElements\n");
+    write_text(dir.file("twice.msh"), "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n5\n1 0 0 0\n2 1 0 0\n3 0 1 0\n"
+                                      "4 0 0 1\n4 0 0 2\n$EndNodes\n$Elements\n1\n1 4 2 1 1 1 2 3 4\n$EndElements\n");
     GmshSession outer;  // as a program that reads several files would hold
     EXPECT_EQ(read_gmsh(dir.file("tet.msh")).element_count(), 1);
     EXPECT_THROW(read_gmsh(dir.file("short.msh")), InputError);
     EXPECT_EQ(read_gmsh(dir.file("tet.msh")).element_count(), 1);
+    // One reader process reads them all: Gmsh's log of one file must not reach the next one's message.
+    EXPECT_THROW(read_gmsh(dir.file("twice.msh")), InputError);
+    try {
+        read_gmsh(dir.file("short.msh"));
+        ADD_FAILURE() << "no error";
+    } catch (const InputError& e) {
+        EXPECT_EQ(std::string(e.what()).find("uplicate"), std::string::npos) << e.what();
+    }
+    EXPECT_EQ(read_gmsh(dir.file("tet.msh")).element_count(), 1);
+}
+
+// A file on which libgmsh 4.8 itself crashes (SIGSEGV in GModel::_associateEntityWithMeshVertices,
+// called from _readMSH2; found by tests/fuzz/fuzz_gmsh, also in its corpus): Gmsh reads it in a child
+// process, whose death becomes an InputError naming the file and the signal; the child is reaped,
+// and this process reads the next file as before.
+TEST(ReadGmsh, ACrashInsideGmshIsAnInputError) {
+    TempDir dir;
+    write_text(dir.file("crash.msh"),
+               "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$PhysicalNamas\n2\n2 2 t\"oor\"\x8e\n3 1 \"beam0\n"
+               "$EndPhyswcalNames\n$Nodes\n5\n1 0 0 0\n2 0.4 0 0\n3 0.4 0.05 0\n4 0 0.05 0\n5 0 0 0.05\n"
+               "6 0.4 0 0.05\n$EndNodes\n$Elements\n2\n1 3 2 2 1 1 2 5 6\n2  1 2 5 4\n2 3 2 1 1 2 3 6 5\n3 nts\n");
+    try {
+        read_gmsh(dir.file("crash.msh"));
+        ADD_FAILURE() << "no error";
+    } catch (const InputError& e) {
+        EXPECT_EQ(std::string(e.what()), "Gmsh crashed reading '" + dir.file("crash.msh").string() +
+                                             "' (signal 11, Segmentation fault): the file is malformed");
+    }
+    errno = 0;
+    EXPECT_EQ(::waitpid(-1, nullptr, WNOHANG), -1);  // no child left behind, not even a zombie
+    EXPECT_EQ(errno, ECHILD);
+    write_text(dir.file("tet.msh"), "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n4\n1 0 0 0\n2 1 0 0\n3 0 1 0\n"
+                                    "4 0 0 1\n$EndNodes\n$Elements\n1\n1 4 2 1 1 1 2 3 4\n$EndElements\n");
+    EXPECT_EQ(read_gmsh(dir.file("tet.msh")).element_count(), 1);
+}
+
+// A 1 kB binary MSH 4.1 file on which libgmsh 4.8 spends minutes (a huge count; found by
+// tests/fuzz/fuzz_gmsh, also in its corpus): past the time limit the reader process is killed and the
+// file refused. (Limit shortened for the test; the default is 30 s + 10 s/MB.)
+TEST(ReadGmsh, AReadThatTakesTooLongIsAnInputError) {
+    const fs::path slow = "tests/fuzz/corpus/gmsh/timeout-msh4-binary-count.msh";
+    ASSERT_TRUE(fs::exists(slow));
+    set_gmsh_read_time_limit(0.5, 0);
+    try {
+        read_gmsh(slow);
+        ADD_FAILURE() << "no error";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("timeout-msh4-binary-count.msh' is malformed: Gmsh did not finish reading it in "
+                                             "0.5 s (1171 bytes"),
+                  std::string::npos)
+            << e.what();
+    }
+    errno = 0;
+    EXPECT_EQ(::waitpid(-1, nullptr, WNOHANG), -1);  // the reader was killed and reaped
+    EXPECT_EQ(errno, ECHILD);
+    set_gmsh_read_time_limit(30, 10);
 }
