@@ -186,11 +186,12 @@ Result run_case(const Case& c, double finger_h, const std::filesystem::path& out
         const Vec3 F = c.e_object > 0 ? support_reaction(s, sensor, kObjectCentre).force : ci->force_on_master();
         bin_impulse += F * dt;
         row_impulse += F * dt;
-        auto last = [&](const char* part) { return s.max_von_mises(part); };  // this cycle's element maximum
-        s_f = std::max(s_f, last("finger"));
-        s_o = std::max(s_o, last("object"));
-        bin_sf = std::max(bin_sf, last("finger"));
-        bin_so = std::max(bin_so, last("object"));
+        // This cycle's element maxima, looked up once per part.
+        const double vm_finger = s.max_von_mises("finger"), vm_object = s.max_von_mises("object");
+        s_f = std::max(s_f, vm_finger);
+        s_o = std::max(s_o, vm_object);
+        bin_sf = std::max(bin_sf, vm_finger);
+        bin_so = std::max(bin_so, vm_object);
         // Bin k ends at the first cycle at or after (k + 1) x 0.1 ms: fixed boundaries, so the bins'
         // times do not drift by the cycles' overshoot.
         if (s.time() >= (bins_fx.size() + 1) * bin - 1e-12) {
