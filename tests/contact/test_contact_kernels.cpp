@@ -456,8 +456,7 @@ TEST(ContactPenalty, NodeBesideAConvexEdgeIsNotCapturedByAFarFace) {
 // Two rigid top faces meet in a valley 20 mm deep at x = 0.1; the probe's bottom nodes lie 3.5 and
 // 1.5 mm short of the valley, 0.4-0.8 mm behind face A (projecting squarely into it) and 0.2-0.6 mm in
 // front of face B's extended plane, beside B within its edge tolerance. They are inside: A keeps them.
-// (When a face the node was only beside could veto any capture, these nodes went free: the
-// football_sweep penetrations grew from 0.25-0.67 to 0.52-0.84 of the element size.)
+// (When a face the node was only beside could veto any capture, these nodes went free.)
 TEST(ContactPenalty, NodeInADentIsKeptByTheFaceItPenetrates) {
     Mesh m = box_hex8(0.2, 0.1, 0.1, 2, 1, 1, "block");
     for (Vec3& x : m.nodes)
