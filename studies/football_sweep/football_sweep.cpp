@@ -13,9 +13,8 @@
 //     10 in/s from the case's switch time (Table 4-4);
 //   - contact: every finger with the football (two-way), the football with the pallet and with the
 //     drum; mu = mu_s = 0.4 (Eq 2-35 with c_d = 0). Finger against finger is not in the judged runs:
-//     neighbouring fingers stay 12 mm apart or more (measured, min_clearance), and the fingers
-//     against their mirror images (the case file's [hand] mirror_contact) are shown once (README
-//     "Finger contact");
+//     neighbouring fingers stay 12 mm apart or more (measured, min_clearance); fingers against their
+//     mirror images across the symmetry plane are not modelled (README reconstruction 9);
 //   - gravity 9.81 m/s^2 in -y.
 //
 // What the study adds to the case file: Table 4-4's cases (each replaces the pallet's speed schedule;
@@ -644,12 +643,9 @@ int main(int argc, char** argv) {
         par::set_threads(1);  // one thread per process: the cases run as forked processes
         std::signal(SIGUSR1, request_stop_signal);
         // Development switches: FOOTBALL_END=<s> caps the simulated time, FOOTBALL_ONLY=<case> runs one
-        // case (no checks), FOOTBALL_MIRROR=1 with it: the mirror R_x roll sign; FOOTBALL_MIRROR_WALL below.
+        // case (no checks), FOOTBALL_MIRROR=1 with it: the mirror R_x roll sign.
         g_case_scene = explicit_case::hand_scene(
             explicit_case::read_case(study.source_dir() / "studies/football_sweep/football_sweep.toml"));
-        // FOOTBALL_MIRROR_WALL=1 (development): the fingers against their mirror images across the
-        // football's symmetry plane (the case file's [hand] mirror_contact; README "Finger contact").
-        if (std::getenv("FOOTBALL_MIRROR_WALL")) g_case_scene.mirror_contact = true;
         RunOptions o;
         o.window = kWindow;  // the judged window (README "Cost"): checks use t <= kWindow only
         // The judged runs start at kStart (README "Cost": the fingers spin up undeformed and settle
