@@ -1,8 +1,11 @@
 #pragma once
 // The health of an explicit run (issue 14 item 8): its energy balance error and its hourglass
 // energy as a fraction of its internal energy, judged against the usual limits of explicit codes:
-//   balance error (max |error| over the energy scale of the run, RunSummary) <= 1 %
-//   hourglass energy / internal energy (their largest values over the run)   <= 10 %
+//   balance error (max |error| over the largest total energy, incl. the work done: LS-DYNA glstat's
+//   energy-ratio denominator, explicit/solver.hpp EnergySummary)             <= 1 %
+//   hourglass energy / internal energy (their largest values)                <= 10 %
+// both over the run's judged window (ExplicitOptions::health_from/health_until; the whole run by
+// default), so that a study judges the window its checks read, with the same numbers as here.
 // A study records its explicit runs with Study::record_run(summary.to_json()); finish() judges
 // every recorded run that carries both measures and fails the study for an unhealthy run, unless
 // reference/<study>.toml exempts that run with the reason (reference/README.md):

@@ -246,8 +246,12 @@ std::string RunSummary::text() const {
                      "viscous {:.6g}, contact {:.6g}, external work {:.6g}, initial {:.6g}\n",
                      energy.kinetic, energy.internal, energy.hourglass, energy.damping, energy.viscous,
                      energy.contact, energy.external, energy.initial);
-    s += fmt::format("  energy balance error: final {:.3g} J, max |error| {:.3g} J = {:.3g} of {:.4g} J\n",
-                     energy.balance_error, energy.max_abs_balance_error, energy.relative_error(), energy.reference);
+    const std::string window = std::isfinite(energy.window_until) || energy.window_from > 0.0
+                                   ? fmt::format(" (judged window {:.6g} to {:.6g} s)", energy.window_from, energy.window_until)
+                                   : "";
+    s += fmt::format("  energy balance error: final {:.3g} J, max |error| {:.3g} J = {:.3g} of the largest total energy "
+                     "{:.4g} J{}\n",
+                     energy.balance_error, energy.max_abs_balance_error, energy.relative_error(), energy.reference, window);
     s += fmt::format("  hourglass energy: max {:.4g} J = {:.3g} of the max internal energy {:.4g} J\n",
                      energy.max_hourglass, energy.hourglass_fraction(), energy.max_internal);
     if (energy.parts.size() > 1)
@@ -322,6 +326,8 @@ nlohmann::json RunSummary::to_json() const {
             {"energy_contact_J", energy.contact},
             {"energy_balance_relative_error", energy.relative_error()},
             {"hourglass_fraction_of_internal", energy.hourglass_fraction()},
+            {"energy_scale_J", energy.reference},
+            {"health_window_s", {energy.window_from, std::min(energy.window_until, end_time)}},
             {"parts", parts_json},
             {"wall_s", wall_s},
             {"element_cycles_per_s", element_cycles_per_s},
@@ -361,6 +367,9 @@ ExplicitSolver::ExplicitSolver(ExplicitModel& model, ExplicitOptions options)
         throw InputError(fmt::format("explicit run '{}': restart dumps asked for (restart_times or restart_interval) "
                                      "but no restart_dir",
                                      opt_.name));
+    if (!(opt_.health_from >= 0.0 && opt_.health_until > opt_.health_from))
+        throw InputError(fmt::format("explicit run '{}': the judged window [{}, {}] s (health_from, health_until) is empty",
+                                     opt_.name, opt_.health_from, opt_.health_until));
     initialize();
 }
 
@@ -404,6 +413,8 @@ void ExplicitSolver::initialize() {
     // Selective mass scaling (Sec 2.3.5, observation 4): raise every element's critical step to
     // mass_scaling_dt / dt_scale by scaling its density with (dt_target / dt_e)^2.
     summary_ = RunSummary{};
+    summary_.energy.window_from = opt_.health_from;  // the judged window (EnergySummary)
+    summary_.energy.window_until = opt_.health_until;
     summary_.name = opt_.name;
     // Also the smallest Table 2-1 step of the solid groups on the reference (with the scaling), the
     // step the measured stability factor refers to (measure_omega_max).
@@ -1019,7 +1030,8 @@ void ExplicitSolver::write_restart(const std::filesystem::path& path) const {
         {"E_internal", E.internal}, {"E_hourglass", E.hourglass}, {"E_damping", E.damping}, {"E_viscous", E.viscous},
         {"E_external", E.external}, {"E_contact", E.contact}, {"E_initial", E.initial},
         {"E_balance_error", E.balance_error}, {"E_max_abs_balance_error", E.max_abs_balance_error},
-        {"E_reference", E.reference}};
+        {"E_reference", E.reference}, {"E_max_internal", E.max_internal}, {"E_max_hourglass", E.max_hourglass},
+        {"health_started", health_started_ ? 1.0 : 0.0}, {"balance_at_from", balance_at_from_}};
     for (const auto& [name, value] : scalars) w.write(std::string("solver/") + name, std::vector<double>{value});
     std::vector<double> part_max_int, part_max_hg;
     for (const auto& p : E.parts) part_max_int.push_back(p.max_internal), part_max_hg.push_back(p.max_hourglass);
@@ -1175,6 +1187,12 @@ void ExplicitSolver::restore(const std::filesystem::path& path) {
     E.balance_error = get("E_balance_error");
     E.max_abs_balance_error = get("E_max_abs_balance_error");
     E.reference = get("E_reference");
+    if (r.has("solver/E_max_internal")) {  // (files written before the judged window have none)
+        E.max_internal = get("E_max_internal");
+        E.max_hourglass = get("E_max_hourglass");
+        health_started_ = get("health_started") != 0.0;
+        balance_at_from_ = get("balance_at_from");
+    }
     if (r.has("solver/part_max_internal")) {  // per-part energies (files written before them have none)
         const auto max_int = r.read("solver/part_max_internal"), max_hg = r.read("solver/part_max_hourglass");
         const auto now_int = r.read("solver/part_internal"), now_hg = r.read("solver/part_hourglass");
@@ -1508,15 +1526,22 @@ RunSummary ExplicitSolver::run() {
         e_visc_ += visc_power_ * dtavg + tot.visc;
         E.balance_error =
             E.kinetic + E.internal + E.hourglass + E.damping + E.viscous + E.contact - E.external - E.initial;
-        E.max_abs_balance_error = std::max(E.max_abs_balance_error, std::abs(E.balance_error));
-        E.max_internal = std::max(E.max_internal, E.internal);
-        E.max_hourglass = std::max(E.max_hourglass, std::abs(E.hourglass));
+        // Energy health over the judged window (EnergySummary; the balance at time n is t_'s).
+        if (t_ >= opt_.health_from - tiny && t_ <= opt_.health_until + tiny) {
+            if (!health_started_) {
+                health_started_ = true;
+                balance_at_from_ = opt_.health_from > 0.0 ? E.balance_error : 0.0;  // the error made before it
+            }
+            E.max_abs_balance_error = std::max(E.max_abs_balance_error, std::abs(E.balance_error - balance_at_from_));
+            E.max_internal = std::max(E.max_internal, E.internal);
+            E.max_hourglass = std::max(E.max_hourglass, std::abs(E.hourglass));
+            E.reference = std::max(E.reference, E.total());
+        }
         for (std::size_t p = 0; p < E.parts.size(); ++p) {
             E.parts[p].max_internal = std::max(E.parts[p].max_internal, part_int_[p]);
             E.parts[p].max_hourglass = std::max(E.parts[p].max_hourglass, std::abs(part_hg_[p]));
         }
-        input_scale_ = std::abs(e0_) + w_abs_ + std::abs(w_prov_);
-        E.reference = std::max({E.reference, input_scale_, tot.ke_plus + e_int_ + e_hg_});
+        input_scale_ = std::abs(e0_) + w_abs_ + std::abs(w_prov_);  // the energy put in (growth detector)
 
         if (tot.bad >= 0) unstable(fmt::format("non-finite velocity at node {}", tot.bad));
         if (tot.ke_plus + e_int_ + e_hg_ > opt_.energy_growth_factor * input_scale_ && input_scale_ > 0.0)

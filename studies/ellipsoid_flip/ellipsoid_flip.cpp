@@ -66,7 +66,7 @@ struct Recorder {
     std::map<std::string, std::vector<double>> tip_y, bins;  // per finger
     std::vector<double> snap_t;
     std::vector<std::vector<Vec3>> snap_x;
-    double pen = 0, energy_scale = 0, max_balance = 0, max_internal = 0, max_hourglass = 0, t_last = -1, next_row = 0;
+    double pen = 0, t_last = -1, next_row = 0;
     std::size_t snap = 0;
 
     // At every history sample (0.1 ms).
@@ -77,7 +77,8 @@ struct Recorder {
         const auto& h = s.history();
         bin_t.push_back(t);
         for (const auto& f : kFingers) bins[f].push_back(h.max_von_mises.at("finger-" + f).back());
-        if (t <= window + 1e-12) health(s, hm);
+        if (t <= window + 1e-12)  // deepest penetration in the judged window (running maximum of every pair)
+            for (const auto& p : hm.pairs()) pen = std::max(pen, p.contact->max_penetration_fraction());
         if (snap < kSnapshots.size() && t >= kSnapshots[snap] - 1e-9) {
             ++snap;
             snap_t.push_back(t);
@@ -103,22 +104,6 @@ struct Recorder {
             std::fflush(stdout);
         }
     }
-
-    // Judged-window health: deepest penetration (running maximum of every pair), energy balance
-    // over the largest energy so far, hourglass over internal (largest values).
-    void health(const ExplicitSolver& s, const HandModel& hm) {
-        for (const auto& p : hm.pairs()) pen = std::max(pen, p.contact->max_penetration_fraction());
-        const auto& h = s.history();
-        if (h.kinetic.empty()) return;
-        const double scale = h.kinetic.back() + h.internal.back() + h.hourglass.back() + h.damping.back() +
-                             std::abs(h.contact.back()) + h.viscous.back();
-        energy_scale = std::max(energy_scale, scale);
-        max_balance = std::max(max_balance, std::abs(h.balance.back()));
-        max_internal = std::max(max_internal, h.internal.back());
-        max_hourglass = std::max(max_hourglass, h.hourglass.back());
-    }
-    double balance() const { return energy_scale > 0 ? max_balance / energy_scale : 0.0; }
-    double hourglass() const { return max_internal > 0 ? max_hourglass / max_internal : 0.0; }
 };
 
 ExplicitOptions solver_options(const std::string& name, double end) {
@@ -129,6 +114,9 @@ ExplicitOptions solver_options(const std::string& name, double end) {
     opt.history_interval = kSample;  // energies and per-part stress maxima in 0.1 ms bins
     opt.exact_viscous_energy = false;  // as football_sweep: first-order viscous booking, ~15 % faster
     opt.name = name;
+    // The run summary's energy health over the judged window (the grasp to kWindow), so that the
+    // judged numbers are the same with --full (which runs the grasp on to 2 s).
+    if (name == "grasp") opt.health_until = kWindow - kStart;
     return opt;
 }
 
@@ -285,9 +273,12 @@ int main(int argc, char** argv) {
         study.trend("fig-4-18/object-slips-during-flip", "not run in the judged window (--full runs the flip: flip-full.md)");
         study.trend_holds("contact/penetration-below-limit", rec.pen < 0.2,
                           fmt::format("largest penetration {:.3f} of the element size (all pairs, t <= {} s)", rec.pen, kWindow));
-        study.trend_holds("energy/balance-and-hourglass", rec.balance() < 0.01 && rec.hourglass() < 0.1,
-                          fmt::format("largest balance error {:.2g} of the largest energy, hourglass / internal {:.3f} (t <= {} s)",
-                                      rec.balance(), rec.hourglass(), kWindow));
+        // The grasp run's summary: its energy health over the judged window (EnergySummary, the
+        // measures and limits check/run_health judges every run by).
+        const double bal = gsum.energy.relative_error(), hg = gsum.energy.hourglass_fraction();
+        study.trend_holds("energy/balance-and-hourglass", bal <= check::kMaxBalanceError && hg <= check::kMaxHourglassFraction,
+                          fmt::format("largest balance error {:.2g} of the largest total energy (initial + work done), hourglass / "
+                                      "internal {:.3f} (t <= {} s)", bal, hg, kWindow));
 
         // --- --full: the flip (shown) ---
         if (fsum) {

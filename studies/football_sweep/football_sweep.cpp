@@ -11,18 +11,22 @@
 //     rubber E 6.1 MPa, nu 0.49, centre (685.5, 50.8, 184) mm, u_z = 0 on the plane z = 184 mm;
 //   - the pallet: a rigid 200 x 50 mm plate under the football moving in -x at 18 in/s, then
 //     10 in/s from the case's switch time (Table 4-4);
-//   - contact: every finger with the football (two-way), neighbouring fingers with each other, the
-//     football with the pallet and with the drum; mu = mu_s = 0.4 (Eq 2-35 with c_d = 0);
+//   - contact: every finger with the football (two-way), the football with the pallet and with the
+//     drum; mu = mu_s = 0.4 (Eq 2-35 with c_d = 0). Finger against finger is not in the judged runs:
+//     neighbouring fingers stay 12 mm apart or more (measured, min_clearance); fingers against their
+//     mirror images across the symmetry plane are not modelled (README reconstruction 9);
 //   - gravity 9.81 m/s^2 in -y.
 //
 // What the study adds to the case file: Table 4-4's cases (each replaces the pallet's speed schedule;
 // the file's is Case 4), the damping-frame and mirror variants, the run plan, checks and figures.
 //
 // Run plan (README "Cost"): the five cases of Table 4-4 are the same run until the earliest speed
-// switch (Case 5, 1.06 s). One process runs that common prefix, then fork()s one process per case
-// at t_fork < 1.06 s; each child changes only its pallet schedule and runs on. The children are
-// exact continuations (the whole process state is copied), so every case is bit-identical to a run
-// from t = 0. CTest stops each case at the end of the judged window; --full runs to 3 s.
+// switch (Case 5, 1.06 s). One process runs Case 1 and writes a restart dump 0.1 ms before each
+// other case's switch; from it a child restarts with its own pallet schedule and runs on, so every
+// case is bit-identical to a run from t = 0. A case whose switch comes when the football is out of
+// reach of both pallets (Case 2: thrown off the pallet before 1.38 s) goes on sharing the parent's
+// run, bit for bit, and is forked from its dump only if the football comes within reach of either
+// pallet. CTest stops each case at the end of the judged window; --full runs to 3 s.
 #include <csignal>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -33,6 +37,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <map>
+#include <memory>
 #include <numbers>
 #include <optional>
 #include <set>
@@ -123,8 +128,9 @@ struct Record {
     std::vector<double> snap_t;
     std::vector<std::vector<double>> snap_x;                                // node coordinates (flat)
     double y0 = 0, window = 0, s_cfc_max = 0, s_raw_max = 0;
-    // At the end of the judged window: largest penetration so far, energy balance, hourglass share.
-    double pen_window = 0, balance_window = 0, hourglass_window = 0;
+    // At the end of the judged window: largest penetration so far (the energy health is the run
+    // summary's, judged over the same window: ExplicitOptions::health_until).
+    double pen_window = 0;
     json summary;
 };
 
@@ -138,7 +144,7 @@ json to_json(const Record& r) {
               {"s_ball_cfc", r.s_ball_cfc}, {"s_fingers", r.s_fingers}, {"tip_y", r.tip_y}, {"impulse", r.impulse},
               {"lag", r.lag}, {"min_clearance", r.min_clearance}, {"snap_t", r.snap_t}, {"snap_x", r.snap_x},
               {"y0", r.y0}, {"window", r.window}, {"s_cfc_max", r.s_cfc_max}, {"s_raw_max", r.s_raw_max},
-              {"pen_window", r.pen_window}, {"balance_window", r.balance_window}, {"hourglass_window", r.hourglass_window},
+              {"pen_window", r.pen_window},
               {"summary", r.summary}};
     for (const auto& [n, p] : r.pairs) j["pairs"][n] = pair_json(p);
     for (const auto& [n, p] : r.fingers) j["fingers"][n] = pair_json(p);
@@ -154,7 +160,7 @@ Record from_json(const json& j) {
     j.at("tip_y").get_to(r.tip_y), j.at("impulse").get_to(r.impulse), j.at("lag").get_to(r.lag);
     j.at("min_clearance").get_to(r.min_clearance), j.at("snap_t").get_to(r.snap_t), j.at("snap_x").get_to(r.snap_x);
     r.y0 = j.at("y0"), r.window = j.at("window"), r.s_cfc_max = j.at("s_cfc_max"), r.s_raw_max = j.at("s_raw_max");
-    r.pen_window = j.at("pen_window"), r.balance_window = j.at("balance_window"), r.hourglass_window = j.at("hourglass_window");
+    r.pen_window = j.at("pen_window");
     r.summary = j.at("summary");
     if (j.contains("pairs")) for (const auto& [n, a] : j["pairs"].items()) r.pairs[n] = pair_from(a);
     if (j.contains("fingers")) for (const auto& [n, a] : j["fingers"].items()) r.fingers[n] = pair_from(a);
@@ -196,8 +202,20 @@ struct Recorder {
     std::map<std::string, std::vector<int>> surf;  // surface nodes of each finger (finger-finger clearance)
     std::vector<double> bins;                      // football stress maxima per 0.1 ms (the CFC 60 input)
     double bin_s = 0, row_s = 0, row_sf = 0, next_bin = 0, next_row = 0, next_clearance = 0, next_log = 0;
-    double energy_scale = 0, max_balance = 0, max_internal = 0, max_hourglass = 0, t_last = -1;
+    double t_last = -1;
     std::size_t snap = 0;
+    // Cases that share this run (run(): the football out of reach of their pallet and of this run's):
+    // what differs in their record, their football - pallet x per row and their pallet's nodes at
+    // each snapshot, from the rows and snapshots where the sharing began.
+    struct Sharer {
+        int id = 0;
+        Plate pallet;
+        std::size_t row0 = 0, snap0 = 0;
+        std::vector<double> rel_x;
+        std::vector<std::vector<std::pair<int, Vec3>>> snap_pallet;
+    };
+    std::vector<Sharer> sharers;
+    std::vector<int> pallet_nodes;  // the pallet's mesh nodes (rigid)
 
     Recorder(const Variant& v_, const RunOptions& o_, const HandModel& hm, int id) : v(v_), o(o_) {
         r.id = id;
@@ -206,6 +224,12 @@ struct Recorder {
         for (const auto& f : kFingers)
             surf[f] = contact::ContactSurface::from_part(hm.mesh(), "finger-" + f, hm.scene().hand.rubber).nodes;
         for (const auto& [a, b] : kFingerPairs) r.min_clearance[a + b] = 1e9;
+        if (v.football) {
+            std::set<int> nodes;
+            for (int b : hm.mesh().blocks_of_part("pallet"))
+                for (int n : hm.mesh().blocks[b].connectivity) nodes.insert(n);
+            pallet_nodes.assign(nodes.begin(), nodes.end());
+        }
         next_bin = next_row = next_clearance = next_log = o.start;
     }
 
@@ -242,6 +266,11 @@ struct Recorder {
             std::vector<double> flat;
             for (const auto& p : s.state().x) flat.insert(flat.end(), {p.x(), p.y(), p.z()});
             r.snap_x.push_back(std::move(flat));
+            for (auto& sh : sharers) {  // (the solver moves rigid nodes onto their motion, to rounding)
+                std::vector<std::pair<int, Vec3>> at;
+                for (int n : pallet_nodes) at.emplace_back(n, sh.pallet.motion().position(s.state().X[n], tau));
+                sh.snap_pallet.push_back(std::move(at));
+            }
         }
         if (t < next_row - 1e-12) return;
         // --- every 1 ms ---
@@ -251,6 +280,7 @@ struct Recorder {
             const Vec3 c = hm.centre_of_mass("football", s.state().x);
             r.x.push_back(c.x()), r.y.push_back(c.y()), r.z.push_back(c.z());
             r.rel_x.push_back(c.x() - hm.plate_centre("pallet", tau).x());
+            for (auto& sh : sharers) sh.rel_x.push_back(c.x() - sh.pallet.motion().position(sh.pallet.centre, tau).x());
         }
         r.s_ball.push_back(row_s), r.s_fingers.push_back(row_sf);
         row_s = row_sf = 0;
@@ -259,23 +289,7 @@ struct Recorder {
             r.tip_y[f].push_back(s.state().x[node].y() - s.state().X[node].y());
             r.impulse[f].push_back(r.fingers[f].impulse);
         }
-        if (t <= o.window + 1e-12) {
-            r.pen_window = max_penetration();
-            // Energy balance error relative to the largest energy in the system so far (kinetic +
-            // internal + hourglass + damping + contact + viscous), and hourglass over internal.
-            const auto& h = s.history();
-            if (h.kinetic.empty()) return;
-            const double scale = h.kinetic.back() + h.internal.back() + h.hourglass.back() + h.damping.back() +
-                                 std::abs(h.contact.back()) + h.viscous.back();
-            energy_scale = std::max(energy_scale, scale);
-            max_balance = std::max(max_balance, std::abs(h.balance.back()));
-            r.balance_window = energy_scale > 0 ? max_balance / energy_scale : 0.0;
-            // Hourglass energy over internal energy, their largest values so far (as the run summary's
-            // EnergySummary::hourglass_fraction: judged where the deformation was, not after release).
-            max_internal = std::max(max_internal, h.internal.back());
-            max_hourglass = std::max(max_hourglass, h.hourglass.back());
-            r.hourglass_window = max_internal > 0 ? max_hourglass / max_internal : 0.0;
-        }
+        if (t <= o.window + 1e-12) r.pen_window = max_penetration();
     }
 
     // Contact this cycle: impulse, contact time and the first/last contact per pair and per finger;
@@ -411,7 +425,30 @@ ExplicitOptions solver_options(const RunOptions& o, int id) {
     // exact booking the first complete runs had ~1e-7 of the largest energy).
     opt.exact_viscous_energy = false;
     opt.name = fmt::format("{}-case-{}", o.name, id);
+    opt.health_until = o.window - o.start;  // the run summary's energy health over the judged window
     return opt;
+}
+
+// Whether the football is out of reach of pallet `p` at model time tau: no football node within
+// kReachNormal above the plate's top or below its contact depth, unless it is kReachSide beyond the
+// plate's edges. lib/contact pushes only nodes that are below the top (at most `depth`) and project
+// onto the plate within its edge tolerance (5 % of a 100 mm segment); the test runs every cycle, in
+// which a node moves ~4 um, so a pallet out of reach exerts no force and changes nothing else in a
+// run (its contact search finds nothing).
+constexpr double kReachNormal = 0.002, kReachSide = 0.01;
+bool out_of_reach(const Plate& p, const HandModel& hm, const NodalState& s, double tau) {
+    const Vec3 c = p.motion().position(p.centre, tau);
+    const Vec3 n = p.u.cross(p.v).normalized();
+    const double hu = 0.5 * p.u.norm(), hv = 0.5 * p.v.norm();
+    const Vec3 eu = p.u.normalized(), ev = p.v.normalized();
+    for (int i : hm.part_nodes("football")) {
+        const Vec3 d = s.x[i] - c;
+        const double h = d.dot(n);
+        if (h > kReachNormal || h < -p.depth - kReachNormal) continue;  // above or below the plate's reach
+        if (std::abs(d.dot(eu)) > hu + kReachSide || std::abs(d.dot(ev)) > hv + kReachSide) continue;  // beside it
+        return false;
+    }
+    return true;
 }
 
 // Runs cases[0] from t = 0. The other cases are the same run until their speed switch: the run
@@ -419,6 +456,11 @@ ExplicitOptions solver_options(const RunOptions& o, int id) {
 // and when one is written a child process is forked that builds the case's model (its pallet
 // schedule) and restarts from the dump (a "full deck restart" that changes a motion), keeping the
 // observer's record so far. Each process writes <out>/<name>-case-<id>.json; the children then exit.
+// A case whose switch comes when the football is out of reach of both pallets (this run's and the
+// case's: Case 2, the football thrown off before 1.38 s) is this run, bit for bit, for as long as
+// that lasts: its child is forked from its dump only when the football comes within reach of either
+// pallet (the child recomputes the cycles since the dump); if it never does, the case's record is
+// this run's (README "Cost").
 // Returns cases[0]'s record.
 Record run(const Variant& v, const RunOptions& o) {
     std::vector<Case> pending(o.cases.begin() + 1, o.cases.end());
@@ -436,32 +478,79 @@ Record run(const Variant& v, const RunOptions& o) {
     }
     Recorder rec(v, o, hm, o.cases.front().id);
     std::size_t forked = 0;
+    // Cases sharing this run: their dump, when it was written, and the recorder as it was then (a
+    // case that leaves the shared run restarts from its dump with it, as if forked at the dump).
+    struct Shared {
+        Case c;
+        std::filesystem::path dump;
+        double time = 0;
+        long steps = 0;
+        std::shared_ptr<Recorder> saved;
+    };
+    std::vector<Shared> shared;
     ExplicitSolver solver(hm.model(), opt);
+    auto fork_case = [&](Shared& sh) {
+        std::fflush(stdout);
+        const pid_t pid = fork();
+        if (pid < 0) throw SolverError("football_sweep: fork() failed");
+        if (pid > 0) return;
+        // The child: case sh.c from the dump, with the record up to it.
+        HandModel child_model(football_scene(sh.c, v, o.start));
+        ExplicitOptions copt = solver_options(o, sh.c.id);
+        copt.restart_from = sh.dump;
+        ExplicitSolver child(child_model.model(), copt);
+        Recorder& crec = *sh.saved;
+        crec.r.id = sh.c.id;
+        crec.sharers.clear();
+        child.observer = [&](const ExplicitSolver& cs) { crec.cycle(cs, child_model); };
+        const RunSummary sum = child.run();
+        crec.finish(sum, child_model, {{"file", sh.dump.filename().string()}, {"time", sh.time + o.start},
+                                       {"steps_before", sh.steps}});
+        std::fflush(stdout);
+        std::_Exit(0);
+    };
     solver.observer = [&](const ExplicitSolver& s) {
         while (forked < s.restart_files().size() && forked < pending.size()) {
             const Case next = pending[forked];
-            const auto file = s.restart_files()[forked++];
-            std::fflush(stdout);
-            const pid_t pid = fork();
-            if (pid < 0) throw SolverError("football_sweep: fork() failed");
-            if (pid > 0) continue;
-            // The child: case `next` from the dump, with the record so far.
-            HandModel child_model(football_scene(next, v, o.start));
-            ExplicitOptions copt = solver_options(o, next.id);
-            copt.restart_from = file;
-            ExplicitSolver child(child_model.model(), copt);
-            rec.r.id = next.id;
-            child.observer = [&](const ExplicitSolver& cs) { rec.cycle(cs, child_model); };
-            const RunSummary sum = child.run();
-            rec.finish(sum, child_model, {{"file", file.filename().string()}, {"time", s.time() + o.start},
-                                          {"steps_before", s.step()}});
-            std::fflush(stdout);
-            std::_Exit(0);
+            shared.push_back({next, s.restart_files()[forked++], s.time(), s.step(), std::make_shared<Recorder>(rec)});
+            rec.sharers.push_back({next.id, football_scene(next, v, o.start).plates.at(0), rec.r.t.size(), rec.r.snap_t.size(), {}, {}});
+        }
+        // Fork every case whose pallet, or this run's, may touch the football now.
+        for (std::size_t k = 0; k < shared.size();) {
+            const auto sh = std::find_if(rec.sharers.begin(), rec.sharers.end(), [&](const auto& q) { return q.id == shared[k].c.id; });
+            if (v.football && out_of_reach(sh->pallet, hm, s.state(), s.time()) &&
+                out_of_reach(hm.scene().plates.at(0), hm, s.state(), s.time())) {
+                ++k;
+                continue;
+            }
+            if (s.time() > shared[k].time + kSample)
+                fmt::print("  case {} leaves the shared run at t {:.4f} s\n", shared[k].c.id, s.time() + o.start);
+            fork_case(shared[k]);
+            rec.sharers.erase(sh);
+            shared.erase(shared.begin() + static_cast<std::ptrdiff_t>(k));
         }
         rec.cycle(s, hm);
     };
     const RunSummary sum = solver.run();
     rec.finish(sum, hm, nullptr);
+    // The cases that shared the whole run: its record under their id, with their pallet.
+    for (const auto& sh : rec.sharers) {
+        Record r = rec.r;
+        r.id = sh.id;
+        std::copy(sh.rel_x.begin(), sh.rel_x.end(), r.rel_x.begin() + static_cast<std::ptrdiff_t>(sh.row0));
+        for (std::size_t k = 0; k < sh.snap_pallet.size(); ++k)
+            for (const auto& [n, x] : sh.snap_pallet[k])
+                for (int d = 0; d < 3; ++d) r.snap_x[sh.snap0 + k][3 * n + d] = x[d];
+        r.summary["name"] = fmt::format("{}-case-{}", o.name, sh.id);
+        const double from = std::find_if(shared.begin(), shared.end(), [&](const Shared& q) { return q.c.id == sh.id; })->time + o.start;
+        r.summary["shared_run"] = {{"of", fmt::format("{}-case-{}", o.name, rec.r.id)}, {"from", from},
+                                   {"why", "the football out of reach of both pallets from the case's switch on"}};
+        io::AtomicFile f(o.out / fmt::format("{}-case-{}.json", o.name, r.id));
+        f.stream() << to_json(r).dump();
+        f.commit();
+        fmt::print("[ {} case {} ] the run of case {} from {:.4f} s (the football out of reach of both pallets)\n", o.name,
+                   sh.id, rec.r.id, from);
+    }
     return rec.r;
 }
 
@@ -735,15 +824,19 @@ int main(int argc, char** argv) {
 
         // --- numerical health ---
         double pen = 0, bal = 0, hg = 0;
-        for (const auto& [id, r] : res) pen = std::max(pen, r.pen_window), bal = std::max(bal, r.balance_window),
-                                        hg = std::max(hg, r.hourglass_window);
+        for (const auto& [id, r] : res)
+            pen = std::max(pen, r.pen_window), bal = std::max(bal, r.summary.at("energy_balance_relative_error").get<double>()),
+            hg = std::max(hg, r.summary.at("hourglass_fraction_of_internal").get<double>());
         std::string clear;
         for (const auto& [pairname, d] : c2.min_clearance) clear += fmt::format("{}{} {:.1f} mm", clear.empty() ? "" : ", ", pairname, 1e3 * d);
         study.trend_holds("contact/penetration-below-limit", pen < 0.2,
                           fmt::format("largest penetration {:.3f} of the element size (all pairs, all cases, t <= {} s)", pen, o.window),
                           "closest surface nodes of neighbouring fingers (Case 2): " + clear);
-        study.trend_holds("energy/balance-and-hourglass", bal < 0.01 && hg < 0.1,
-                          fmt::format("largest balance error {:.2g} of the largest energy, hourglass / internal {:.3f} (largest values up to {} s)", bal, hg, o.window));
+        // The run summaries' energy health (EnergySummary over the judged window, the measures and
+        // limits that check/run_health judges every run by), over all cases.
+        study.trend_holds("energy/balance-and-hourglass", bal <= check::kMaxBalanceError && hg <= check::kMaxHourglassFraction,
+                          fmt::format("largest balance error {:.2g} of the largest total energy (initial + work done), hourglass / "
+                                      "internal {:.3f} (largest values up to {} s)", bal, hg, o.window));
         study.plot();
     });
 }

@@ -4,6 +4,10 @@
 
 #include <cmath>
 #include <filesystem>
+#include <limits>
+
+#include <fmt/format.h>
+#include <unistd.h>
 
 #include <nlohmann/json.hpp>
 
@@ -320,4 +324,60 @@ TEST(ExplicitOutput, SummarySplitsTheWallTime) {
     EXPECT_EQ(j["timing_s"]["elements"].get<double>(), T.elements);
     EXPECT_EQ(j["contact_share"].get<double>(), 0.0);
     EXPECT_TRUE(j["contact_interfaces"].empty());
+}
+
+// The energy health over a judged window (ExplicitOptions::health_until/health_from, EnergySummary):
+// a run to 4e-4 s judged to 2e-4 s has exactly the health of a run that ends at 2e-4 s, whatever
+// follows; through a restart dump inside the window the window carries on bit for bit; a window that
+// starts later counts the balance error from its start. The scale is the largest total energy
+// (initial + work done: LS-DYNA glstat's energy-ratio denominator).
+TEST(ExplicitOutput, EnergyHealthOverAJudgedWindow) {
+    const fs::path dir = fs::temp_directory_path() / fmt::format("fem_health_window_{}", ::getpid());
+    fs::remove_all(dir);
+    Mesh mesh = box_hex8(0.1, 0.02, 0.02, 5, 1, 1, "bar");
+    auto run = [&](double end, double until, double from = 0.0, std::vector<double> dumps = {}, fs::path restart = {}) {
+        auto model = pulled_bar(mesh);
+        ExplicitOptions o;
+        o.end_time = end;
+        o.progress = false;
+        o.print_summary = false;
+        o.exact_viscous_energy = false;  // a first-order viscous booking: a balance error that grows
+        o.health_until = until;
+        o.health_from = from;
+        o.restart_times = std::move(dumps);
+        if (!o.restart_times.empty()) o.restart_dir = dir;
+        o.restart_from = restart;
+        ExplicitSolver solver(*model, o);
+        RunSummary sum = solver.run();
+        return std::pair{sum, solver.restart_files()};
+    };
+    const auto [whole, no_files] = run(2e-4, std::numeric_limits<double>::infinity());
+    const auto [longer, files] = run(4e-4, 2e-4, 0.0, {1e-4});
+    ASSERT_EQ(files.size(), 1u);
+    EXPECT_GT(whole.energy.max_abs_balance_error, 0.0);
+    EXPECT_EQ(longer.energy.max_abs_balance_error, whole.energy.max_abs_balance_error);
+    EXPECT_EQ(longer.energy.reference, whole.energy.reference);
+    EXPECT_EQ(longer.energy.relative_error(), whole.energy.relative_error());
+    EXPECT_EQ(longer.energy.hourglass_fraction(), whole.energy.hourglass_fraction());
+    EXPECT_NE(longer.energy.kinetic, whole.energy.kinetic);  // (the end state is another)
+    // The scale: the largest total energy, at least the final one (here the energies grow).
+    EXPECT_GE(whole.energy.reference, whole.energy.total());
+    EXPECT_NEAR(whole.energy.reference, whole.energy.initial + whole.energy.external, 0.02 * whole.energy.reference);
+    const nlohmann::json j = longer.to_json();
+    EXPECT_EQ(j["health_window_s"][1].get<double>(), 2e-4);
+    // Restarted at 1e-4 s (inside the window): the same health.
+    const auto [restarted, none] = run(4e-4, 2e-4, 0.0, {}, files[0]);
+    EXPECT_EQ(restarted.energy.max_abs_balance_error, longer.energy.max_abs_balance_error);
+    EXPECT_EQ(restarted.energy.relative_error(), longer.energy.relative_error());
+    EXPECT_EQ(restarted.energy.hourglass_fraction(), longer.energy.hourglass_fraction());
+    // A window from 2e-4 s: the error made before it does not count.
+    const auto [late, unused] = run(4e-4, std::numeric_limits<double>::infinity(), 2e-4);
+    const auto [all, unused2] = run(4e-4, std::numeric_limits<double>::infinity());
+    fmt::print("balance error: max {:.4g} J to 2e-4 s, {:.4g} J to 4e-4 s, {:.4g} J from 2e-4 s; scale {:.4g} J\n",
+               whole.energy.max_abs_balance_error, all.energy.max_abs_balance_error, late.energy.max_abs_balance_error,
+               whole.energy.reference);
+    EXPECT_EQ(late.energy.balance_error, all.energy.balance_error);  // the same run
+    EXPECT_NE(late.energy.max_abs_balance_error, all.energy.max_abs_balance_error);
+    EXPECT_THROW(run(4e-4, 1e-4, 2e-4), InputError);  // an empty window
+    fs::remove_all(dir);
 }

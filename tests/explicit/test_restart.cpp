@@ -150,6 +150,10 @@ TEST(ExplicitRestart, KilledRunResumesFromItsLatestDumpBitIdentically) {
     EXPECT_EQ(rr.energy.damping, ra.energy.damping);
     EXPECT_EQ(rr.energy.external, ra.energy.external);
     EXPECT_EQ(rr.energy.max_abs_balance_error, ra.energy.max_abs_balance_error);
+    // The energy health (its scale and the largest internal and hourglass energies) carries over too.
+    EXPECT_EQ(rr.energy.reference, ra.energy.reference);
+    EXPECT_EQ(rr.energy.max_internal, ra.energy.max_internal);
+    EXPECT_EQ(rr.energy.max_hourglass, ra.energy.max_hourglass);
     EXPECT_EQ(sr.history().time, sa.history().time);
     EXPECT_TRUE(same_bits(sr.history().nodes[0].displacement, sa.history().nodes[0].displacement));
     fs::remove_all(dir);

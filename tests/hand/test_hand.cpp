@@ -25,6 +25,17 @@ using units::deg;
 using units::inch;
 using units::mm;
 
+namespace {
+// Options of a short test run: to end_time, quiet.
+ExplicitOptions quiet_run(double end_time) {
+    ExplicitOptions opt;
+    opt.end_time = end_time;
+    opt.print_summary = false;
+    opt.progress = false;
+    return opt;
+}
+}  // namespace
+
 TEST(Ellipsoid, HalfFootballCountsAndVolume) {
     // Table 4-2: the half football has 512 elements and 677 nodes; our O-grid 512 / 678.
     const Mesh m = hex_ellipsoid(Vec3(122, 66, 66) * mm, EllipsoidGrid{}, true, "football");
@@ -170,10 +181,7 @@ TEST(Hand, CoRotatingDampingDoesNotDragARigidSpin) {
         s.hand.fingers = {table_4_1()[3]};  // finger D only
         s.damping_frame = frame;
         HandModel hm(s);
-        ExplicitOptions opt;
-        opt.end_time = 2e-3;
-        opt.print_summary = false;
-        opt.progress = false;
+        ExplicitOptions opt = quiet_run(2e-3);
         ExplicitSolver solver(hm.model(), opt);
         solver.run();
         const int n = hm.tip_node("D");
@@ -263,4 +271,59 @@ TEST(Hand, SeenFromMovesTheSceneToT0) {
     Scene carried = ellipsoid::scene();
     EXPECT_NO_THROW(seen_from(carried, 1.0));
     EXPECT_THROW(seen_from(carried, 1.6), InputError);  // the carriage stopped at 1.5 s
+}
+
+namespace {
+// The run summary's record of contact pair `name`.
+const InterfaceSummary& interface(const RunSummary& sum, const std::string& name) {
+    std::string names;
+    for (const auto& c : sum.interfaces) {
+        if (c.name == name) return c;
+        names += " '" + c.name + "'";
+    }
+    throw InputError("no contact interface " + name + "; there are" + names);
+}
+}  // namespace
+
+// Finger against finger (a [[contact]] pair of two fingers, CASE_FILE.md): two 3-inch fingers side by
+// side on a stopped drum, finger B swung towards A about the drum axis (its roots held). With the
+// pair the fingers stay apart (penetration below 0.2 of the element, the studies' limit); with the
+// same pair at a penalty 1e-6 of it (no force, the same measure of penetration) B passes into A.
+TEST(Hand, FingerPairContactKeepsPressedFingersApart) {
+    auto run = [](double penalty_scale) {
+        Scene s;
+        FingerRow a = table_4_1()[3];  // finger D's row: 3 in, no roll or pitch
+        a.alpha = 0.0;                 // undamped: B keeps its swing
+        FingerRow b = a;
+        a.name = "A", b.name = "B";
+        b.initial_angle = a.initial_angle + 10.0 * deg;
+        s.hand.fingers = {a, b};
+        s.hand.drum = stepped_drum(0.0);
+        s.contacts.push_back({"finger-B", "finger-A", {}, true, penalty_scale});
+        HandModel hm(s);
+        // B turned towards A about the drum axis at 15 rad/s (tip ~2.8 m/s).
+        const auto& X = hm.mesh().nodes;
+        Vec3 ca = Vec3::Zero(), cb = Vec3::Zero();
+        for (int n : hm.part_nodes("finger-A")) ca += X[n] / hm.part_nodes("finger-A").size();
+        for (int n : hm.part_nodes("finger-B")) cb += X[n] / hm.part_nodes("finger-B").size();
+        const Vec3 c = s.hand.drum.centre;
+        Vec3 w = 15.0 * Vec3::UnitY();
+        if (w.cross(cb - c).dot(ca - cb) < 0) w = -w;
+        for (int n : hm.part_nodes("finger-B")) hm.model().set_initial_velocity({n}, w.cross(X[n] - c));
+        double gap = 1e9;
+        for (int i : hm.part_nodes("finger-A"))
+            for (int j : hm.part_nodes("finger-B")) gap = std::min(gap, (X[i] - X[j]).norm());
+        fmt::print("fingers A and B: closest nodes {:.2f} mm apart at the start\n", 1e3 * gap);
+        ExplicitOptions opt = quiet_run(12e-3);
+        ExplicitSolver solver(hm.model(), opt);
+        return solver.run();
+    };
+    const RunSummary held = run(0.1), free = run(1e-6);
+    const auto& h = interface(held, "finger-B on finger-A");
+    const auto& f = interface(free, "finger-B on finger-A");
+    fmt::print("finger B against finger A: penetration {:.3f} of the element with contact, {:.3f} without; contact energy {:.3g} J\n",
+               h.max_penetration_fraction, f.max_penetration_fraction, h.energy);
+    EXPECT_GT(h.max_penetration_fraction, 0.0);    // they touched
+    EXPECT_LT(h.max_penetration_fraction, 0.2);    // and did not interpenetrate
+    EXPECT_GT(f.max_penetration_fraction, 0.5);    // without the force B goes into A
 }
