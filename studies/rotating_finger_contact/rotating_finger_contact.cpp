@@ -26,6 +26,8 @@
 #include <numbers>
 #include <vector>
 
+#include "assembly/model.hpp"
+#include "assembly/static_solve.hpp"
 #include "check/cases.hpp"
 #include "check/study.hpp"
 #include "contact/contact.hpp"
@@ -33,6 +35,7 @@
 #include "core/error.hpp"
 #include "core/units.hpp"
 #include "damping/signal.hpp"
+#include "element/hex8_explicit.hpp"
 #include "explicit/solver.hpp"
 #include "io/table.hpp"
 #include "mesh/finger.hpp"
@@ -83,6 +86,162 @@ struct Result {
 // maxima. Returns the filtered record.
 damping::SampledSignal cfc60(std::vector<double> bins, double bin) {
     return damping::cfc_filter(damping::SampledSignal{0.5 * bin, bin, std::move(bins)}, 60.0);
+}
+
+
+// --- Static mesh convergence (issue 13 items 2 and 3; ROTFINGER_STATIC=1, README) -----------------
+//
+// The dynamic runs report element-centre stresses of one-point hexahedra, as LS-DYNA does: the
+// value of the element's mean strain, i.e. at its centre. How that value depends on the mesh is a
+// question of statics (the drum turns slowly: the finger's peak is quasi-static), so it is measured
+// here on linear static solutions of the SAME element: the one-point hexahedron with its
+// Flanagan-Belytschko hourglass stiffness (QM 0.1), linearized about the undeformed state.
+
+// Stiffness of the explicit one-point hexahedron (element/hex8_explicit) at the undeformed state,
+// by central differences of its internal forces (neo-Hookean -> the linear material at small
+// strain; the differences are exact to ~1e-9 relative for a step of 1e-7 of the element size).
+ElementMatrices one_point_hex8_stiffness(std::span<const Vec3> x, const hex8::Hex8Material& mat) {
+    std::array<Vec3, 8> X;
+    std::copy(x.begin(), x.end(), X.begin());
+    const hex8::Hex8Reference ref = hex8::make_reference(X, "static convergence hex8");
+    const double eps = 1e-7 * std::cbrt(ref.volume);
+    std::array<Vec3, 8> u, v;  // (Eigen vectors are not zeroed by {})
+    v.fill(Vec3::Zero());
+    hex8::Hex8Result plus, minus;
+    Eigen::MatrixXd K(24, 24);
+    for (int j = 0; j < 24; ++j) {
+        u.fill(Vec3::Zero());
+        u[j / 3][j % 3] = eps;
+        hex8::internal_force(ref, mat, u, v, -1, plus);
+        u[j / 3][j % 3] = -eps;
+        hex8::internal_force(ref, mat, u, v, -1, minus);
+        for (int a = 0; a < 8; ++a)
+            for (int i = 0; i < 3; ++i) K(3 * a + i, j) = (plus.force[a][i] - minus.force[a][i]) / (2 * eps);
+    }
+    return {0.5 * (K + K.transpose()), Eigen::MatrixXd::Zero(24, 24)};
+}
+
+// Linear static solution of `mesh` (every block one-point hexahedra of material m) under nodal
+// forces `f`, nodes `fixed` clamped; returns each element's centre von Mises stress and centroid.
+struct ElementField {
+    std::vector<double> von_mises, volume;
+    std::vector<Vec3> centroid;
+};
+ElementField solve_one_point_static(const Mesh& mesh, const ElasticMaterial& m, const std::vector<int>& fixed,
+                                    const std::vector<Vec3>& f) {
+    const hex8::Hex8Material mat = hex8::Hex8Material::from(m);
+    Model model(mesh);
+    for (int b = 0; b < static_cast<int>(mesh.blocks.size()); ++b)
+        model.add_block(b, 3, [&](std::span<const Vec3> x, int) { return one_point_hex8_stiffness(x, mat); });
+    model.fix_nodes(fixed);
+    const std::vector<Vec3> u = solve_linear_static(model.assemble(), f);
+    ElementField out;
+    for (int b = 0; b < static_cast<int>(mesh.blocks.size()); ++b)
+        for (int e = 0; e < mesh.blocks[b].size(); ++e) {
+            std::array<Vec3, 8> X, ue, ve;
+            ve.fill(Vec3::Zero());
+            const auto nodes = mesh.blocks[b].element(e);
+            Vec3 c = Vec3::Zero();
+            for (int a = 0; a < 8; ++a) X[a] = mesh.nodes[nodes[a]], ue[a] = u[nodes[a]], c += X[a] / 8;
+            const hex8::Hex8Reference ref = hex8::make_reference(X, "static convergence hex8");
+            hex8::Hex8Result r;
+            hex8::internal_force(ref, mat, ue, ve, -1, r);
+            out.von_mises.push_back(r.von_mises), out.volume.push_back(ref.volume), out.centroid.push_back(c);
+        }
+    return out;
+}
+
+// Item 2: the finger's root stress. At the peak of the general case (thesis mesh, t = 0.71-0.80 s)
+// the root carries a bending moment of 1.23-1.37 N m about the section's major axis, with a
+// transverse force of only 3-8 N (lever M / V = 170-480 mm) and an axial force whose stress is 2 %
+// of the bending stress: the root is in nearly pure bending. So: a stub of the finger's section,
+// 8 x 3.984 mm long (whole layers for every mapped mesh), clamped at its root, loaded at its tip face
+// by a pure couple M about the major axis (axial nodal forces linear in y: no net force).
+// Meshes: the study's O-grid (6 mm) and its half (3 mm); the thesis's mapped 5 x 5 (Table 3-5;
+// layer 3.984 mm) and its halves h/2, h/4 (10 x 10, 20 x 20 sections, layers halved).
+// Reported per mesh: the largest element-centre stress (the root's: what Table 3-7's "max stress in
+// the finger" is on that mesh) over Euler-Bernoulli's surface stress M b / I, and the largest
+// centre stress of the layer nearest mid-stub over beam theory at that element's centroid, M y_c / I
+// (how well the element represents the bending field away from the clamp).
+void finger_root_convergence(const std::filesystem::path& out) {
+    const double layer = 3.984e-3, length = 8 * layer, M = 1.0;
+    const fem::finger::EllipticCylinder stub{12e-3, 8.45e-3, length};
+    const auto rubber = ElasticMaterial::make("rubber", 6.1e6, 0.49, 1000);
+    const double I = pi * stub.a * std::pow(stub.b, 3) / 4, beam_surface = M * stub.b / I;
+    struct Level {
+        std::string name;
+        Mesh mesh;
+    };
+    std::vector<Level> levels;
+    levels.push_back({"O-grid 6 mm (study)", fem::finger::hex_finger(stub, 6e-3)});
+    levels.push_back({"O-grid 3 mm", fem::finger::hex_finger(stub, 3e-3)});
+    const int finest = std::atoi(std::getenv("ROTFINGER_STATIC"));  // 1: h, 2: also h/2, 3: also h/4
+    for (int k = 1; k <= std::clamp(finest, 1, 3); ++k)
+        levels.push_back({fmt::format("mapped {0} x {0}, layer {1:.3f} mm", 5 << (k - 1), 1e3 * layer / (1 << (k - 1))),
+                          fem::finger::hex_finger(stub, fem::finger::mapped_cross_section(5 << (k - 1)), 8 << (k - 1))});
+    io::Table t;
+    std::vector<double> elements, peak, peak_ratio, mid_ratio, z_peak, y_peak;
+    fmt::print("finger stub {:.1f} mm, tip couple 1 N m about the major axis: beam theory M b / I = {:.4g} Pa\n",
+               1e3 * length, beam_surface);
+    for (auto& [name, mesh] : levels) {
+        // The couple as the consistent nodal forces of the linear traction sigma_zz = M y / I_h on the
+        // tip faces (2 x 2 Gauss on each face; I_h is the meshed polygon's, so that the couple is M).
+        // The tip face of a hexahedron of the last layer is nodes 4..7 (lib/mesh/finger.cpp).
+        const ElementBlock& block = mesh.blocks.front();
+        std::vector<std::array<int, 4>> faces;
+        for (int e = block.size(); e-- > 0;) {
+            const auto n = block.element(e);
+            if (std::abs(mesh.nodes[n[4]].z() - length) > 1e-9) break;
+            faces.push_back({n[4], n[5], n[6], n[7]});
+        }
+        const double g = 1 / std::sqrt(3.0);
+        const auto face_integral = [&](const std::array<int, 4>& q, auto&& add) {  // add(N, y, dA) per Gauss point
+            for (double xi : {-g, g})
+                for (double eta : {-g, g}) {
+                    const std::array<double, 4> N = {(1 - xi) * (1 - eta) / 4, (1 + xi) * (1 - eta) / 4,
+                                                     (1 + xi) * (1 + eta) / 4, (1 - xi) * (1 + eta) / 4};
+                    const std::array<double, 4> dxi = {-(1 - eta) / 4, (1 - eta) / 4, (1 + eta) / 4, -(1 + eta) / 4};
+                    const std::array<double, 4> deta = {-(1 - xi) / 4, -(1 + xi) / 4, (1 + xi) / 4, (1 - xi) / 4};
+                    double y = 0, xx = 0, xe = 0, yx = 0, ye = 0;
+                    for (int a = 0; a < 4; ++a) {
+                        const Vec3& p = mesh.nodes[q[a]];
+                        y += N[a] * p.y(), xx += dxi[a] * p.x(), xe += deta[a] * p.x(), yx += dxi[a] * p.y(), ye += deta[a] * p.y();
+                    }
+                    add(N, y, std::abs(xx * ye - xe * yx));
+                }
+        };
+        double I_h = 0;
+        for (const auto& q : faces) face_integral(q, [&](auto&, double y, double dA) { I_h += y * y * dA; });
+        std::vector<Vec3> f(mesh.node_count(), Vec3::Zero());
+        for (const auto& q : faces)
+            face_integral(q, [&](const std::array<double, 4>& N, double y, double dA) {
+                for (int a = 0; a < 4; ++a) f[q[a]].z() += N[a] * M * y / I_h * dA;
+            });
+        const ElementField s = solve_one_point_static(mesh, rubber, mesh.node_set("root"), f);
+        // The peak over the root half (the tip half carries the load introduction).
+        std::size_t k_peak = 0;
+        double to_mid = length;
+        for (std::size_t e = 0; e < s.von_mises.size(); ++e) {
+            if (s.centroid[e].z() < 0.5 * length && s.von_mises[e] > s.von_mises[k_peak]) k_peak = e;
+            to_mid = std::min(to_mid, std::abs(s.centroid[e].z() - 0.5 * length));
+        }
+        double s_mid = 0, beam_mid = 0;
+        for (std::size_t e = 0; e < s.von_mises.size(); ++e)
+            if (std::abs(s.centroid[e].z() - 0.5 * length) < to_mid + 1e-9 && s.von_mises[e] > s_mid)
+                s_mid = s.von_mises[e], beam_mid = M * std::abs(s.centroid[e].y()) / I;
+        fmt::print("  {:34s} {:6d} elements: largest centre stress {:.4g} Pa = {:.3f} M b/I (centroid z {:.2f} mm, "
+                   "y {:.2f} mm); mid-stub {:.3f} of M y_c/I\n",
+                   name, static_cast<int>(s.von_mises.size()), s.von_mises[k_peak], s.von_mises[k_peak] / beam_surface,
+                   1e3 * s.centroid[k_peak].z(), 1e3 * s.centroid[k_peak].y(), s_mid / beam_mid);
+        std::fflush(stdout);
+        elements.push_back(static_cast<double>(s.von_mises.size()));
+        peak.push_back(s.von_mises[k_peak]), peak_ratio.push_back(s.von_mises[k_peak] / beam_surface);
+        z_peak.push_back(1e3 * s.centroid[k_peak].z()), y_peak.push_back(1e3 * s.centroid[k_peak].y());
+        mid_ratio.push_back(s_mid / beam_mid);
+    }
+    t.add("elements", elements).add("peak_Pa_per_Nm", peak).add("peak_over_Mb_I", peak_ratio)
+        .add("peak_centroid_z_mm", z_peak).add("peak_centroid_y_mm", y_peak).add("mid_stub_over_My_I", mid_ratio);
+    io::write_dat(out / "static-finger-root.dat", t);
 }
 
 Result run_case(const Case& c, double finger_h, const std::filesystem::path& out) {
@@ -311,6 +470,10 @@ void write_outlines(const std::filesystem::path& path, const Result& r) {
 int main(int argc, char** argv) {
     return check::run_study("rotating_finger_contact", argc, argv, [](check::Study& study) {
         const auto& out = study.results_dir();
+        if (std::getenv("ROTFINGER_STATIC")) {  // the static mesh convergence alone (README), no checks
+            finger_root_convergence(out);
+            return;
+        }
         // Development switches: ROTFINGER_ONLY=<case> runs one case without checks; ROTFINGER_END=<s>
         // caps the simulated time; ROTFINGER_H=<m> sets the finger element length (convergence runs);
         // ROTFINGER_MAPPED=<n> meshes the finger's section as one mapped n x n block (run_case).
