@@ -52,6 +52,20 @@ constexpr double kFingerLength = 203.2e-3;       // 8 inch
 const Vec3 kObjectCentre(101.6e-3, 184.15e-3, 0.0);  // Sec 3.5
 constexpr double kObjA = 99.1e-3, kObjB = 67.3e-3, kObjT = 25e-3;  // Table 3-4
 constexpr double kSensorRadius = 20e-3;          // Table 3-4
+// The object stress that converges with the object mesh (issue 13 item 3, README): the volume mean of
+// the element von Mises stress over the elements whose centroids lie within this distance of the
+// contact point (half the object's thickness; about the size of the thesis's object elements).
+constexpr double kPatchRadius = 12.5e-3;
+
+// Volume mean of `von_mises` over the elements whose centroid lies within kPatchRadius of `p` (0 when
+// there is none).
+double patch_mean(const std::vector<double>& von_mises, const std::vector<double>& volume,
+                  const std::vector<Vec3>& centroid, const Vec3& p) {
+    double sv = 0, v = 0;
+    for (std::size_t e = 0; e < von_mises.size(); ++e)
+        if ((centroid[e] - p).norm() < kPatchRadius) sv += von_mises[e] * volume[e], v += volume[e];
+    return v > 0 ? sv / v : 0.0;
+}
 
 struct Case {
     std::string name;
@@ -71,8 +85,10 @@ struct Result {
     // reaction's 2 ms mean and the raw stress maxima over the 2 ms; the contact force (2 ms mean of
     // |sum of contact forces|); the contact point.
     std::vector<double> t, f, fx, fy, f_mean2ms, f_contact, s_finger, s_object, s_finger_raw, s_object_raw, cx, cy;
+    std::vector<double> s_patch;  // the object's patch-mean stress (CFC 60) at the row time
     double f_max = 0, f_mean2ms_max = 0, s_finger_max = 0, s_object_max = 0, t_first = -1, t_last = -1;
     double s_finger_raw_max = 0, s_object_raw_max = 0, f_contact_max = 0;
+    double s_patch_max = 0, s_patch_raw_max = 0;  // the object's patch-mean stress (kPatchRadius): CFC 60, raw
     double wall = 0;
     long steps = 0;
     // finger outline snapshots (leading and trailing edge polylines) every 0.05 s (c.snapshots)
@@ -244,6 +260,47 @@ void finger_root_convergence(const std::filesystem::path& out) {
     io::write_dat(out / "static-finger-root.dat", t);
 }
 
+// Item 3: the object stress. The aluminium object alone (its O-grid at 12 mm as in the study, 6 mm,
+// 3 mm), fixed on its sensor disc, loaded by a unit line force through its thickness at the contact
+// point of the general case's force peak (thesis mesh, t = 0.712 s: (77.8, 119.0) mm in the drum
+// frame, sensor reaction direction (6.37, -15.88) N), spread over the rim's node column nearest to
+// it (trapezoidal weights through the thickness): the finger's 24 mm wide flank spans the 25 mm thick
+// rim. Reported per mesh: the largest element-centre stress (Table 3-7's measure) and the patch mean.
+void object_stress_convergence(const std::filesystem::path& out) {
+    const auto al = ElasticMaterial::make("object", 69e9, 0.33, 2700);
+    const Vec3 contact = Vec3(77.8e-3, 119.0e-3, 0.0) - kObjectCentre, direction = Vec3(6.37, -15.88, 0).normalized();
+    io::Table t;
+    std::vector<double> sizes, elements, peak, patch;
+    fmt::print("object, unit line force at the contact point of the general case's force peak\n");
+    for (double h : {12e-3, 6e-3, 3e-3}) {
+        Mesh object = fem::finger::hex_finger({kObjA, kObjB, kObjT}, h, "object");
+        object.translate(Vec3(0, 0, -0.5 * kObjT));  // centred on z = 0, as in the study (relative to its centre)
+        std::vector<int> sensor;
+        int nearest = 0;
+        for (int i = 0; i < object.node_count(); ++i) {
+            const Vec3& p = object.nodes[i];
+            if (std::abs(p.z() + 0.5 * kObjT) < 1e-9 && std::hypot(p.x(), p.y()) <= kSensorRadius + 1e-9) sensor.push_back(i);
+            if ((p - contact).head<2>().norm() < (object.nodes[nearest] - contact).head<2>().norm()) nearest = i;
+        }
+        std::vector<int> column;
+        for (int i = 0; i < object.node_count(); ++i)
+            if ((object.nodes[i] - object.nodes[nearest]).head<2>().norm() < 1e-9) column.push_back(i);
+        std::vector<Vec3> f(object.node_count(), Vec3::Zero());
+        const double share = 1.0 / (column.size() - 1);  // trapezoidal over the equal layers
+        for (int i : column)
+            f[i] = direction * share * ((std::abs(std::abs(object.nodes[i].z()) - 0.5 * kObjT) < 1e-9) ? 0.5 : 1.0);
+        const ElementField s = solve_one_point_static(object, al, sensor, f);
+        const double pk = *std::max_element(s.von_mises.begin(), s.von_mises.end());
+        const double pm = patch_mean(s.von_mises, s.volume, s.centroid, Vec3(object.nodes[nearest].x(), object.nodes[nearest].y(), 0));
+        fmt::print("  h {:4.1f} mm, {:5d} elements: largest element stress {:.4g} Pa/N, patch mean ({} mm) {:.4g} Pa/N\n", 1e3 * h,
+                   static_cast<int>(s.von_mises.size()), pk, 1e3 * kPatchRadius, pm);
+        std::fflush(stdout);
+        sizes.push_back(1e3 * h), elements.push_back(static_cast<double>(s.von_mises.size())), peak.push_back(pk), patch.push_back(pm);
+    }
+    t.add("h_mm", sizes).add("elements", elements).add("largest_element_Pa_per_N", peak).add("patch_mean_Pa_per_N", patch);
+    io::write_dat(out / "static-object.dat", t);
+}
+
 Result run_case(const Case& c, double finger_h, const std::filesystem::path& out) {
     Result r;
     r.c = c;
@@ -333,7 +390,30 @@ Result run_case(const Case& c, double finger_h, const std::filesystem::path& out
     // interval of 2 ms would report them.
     constexpr double row = 2e-3, bin = 1e-4;
     constexpr double after_contact = 0.05;  // run on this long after the finger has left the object
-    std::vector<double> bins_fx, bins_fy, bins_sf, bins_so;
+    std::vector<double> bins_fx, bins_fy, bins_sf, bins_so, bins_sp;
+    // The object's patch-mean stress (kPatchRadius around the contact point), sampled at each bin's end.
+    const ElementGroup* object_group = nullptr;
+    for (const auto& g : model.groups())
+        if (g->part == "object") object_group = g.get();
+    std::vector<double> object_volume;
+    if (object_group)
+        for (int e = 0; e < mesh.blocks[object_group->block].size(); ++e) {
+            std::array<Vec3, 8> X;
+            const auto n = mesh.blocks[object_group->block].element(e);
+            for (int a = 0; a < 8; ++a) X[a] = mesh.nodes[n[a]];
+            object_volume.push_back(hex8::make_reference(X, "object").volume);
+        }
+    const auto object_patch = [&](const ExplicitSolver& s) {
+        double w = 0;
+        Vec3 p = Vec3::Zero();
+        for (const auto& cp : ci->contacts()) p += cp.normal_force * cp.point, w += cp.normal_force;
+        if (!object_group || w <= 0) return 0.0;
+        const ElementBlock& block = mesh.blocks[object_group->block];
+        std::vector<Vec3> centroid(block.size(), Vec3::Zero());
+        for (int e = 0; e < block.size(); ++e)
+            for (int n : block.element(e)) centroid[e] += s.state().x[n] / 8;
+        return patch_mean(object_group->element_stress(), object_volume, centroid, p / w);
+    };
     double t_prev = 0, next_snap = 0, bin_start = 0, row_start = 0, s_f = 0, s_o = 0, cw = 0, fc_row = 0;
     double bin_sf = 0, bin_so = 0;
     std::size_t window_bins = 0, window_rows = 0;  // bins and rows up to the end of the checked window
@@ -356,6 +436,7 @@ Result run_case(const Case& c, double finger_h, const std::filesystem::path& out
         if (s.time() >= (bins_fx.size() + 1) * bin - 1e-12) {
             const Vec3 Fm = bin_impulse / (s.time() - bin_start);
             bins_fx.push_back(Fm.x()), bins_fy.push_back(Fm.y()), bins_sf.push_back(bin_sf), bins_so.push_back(bin_so);
+            bins_sp.push_back(object_patch(s));
             bin_start = s.time(), bin_impulse.setZero(), bin_sf = 0, bin_so = 0;
         }
         // Contact force (the interface's resultant) and location: force- and time-weighted centroid of
@@ -392,7 +473,7 @@ Result run_case(const Case& c, double finger_h, const std::filesystem::path& out
     if (window_bins == 0) window_bins = bins_fx.size(), window_rows = r.t.size();  // contact never ended
     // The plotted histories: the whole record.
     const damping::SampledSignal fx = cfc60(bins_fx, bin), fy = cfc60(bins_fy, bin), sf = cfc60(bins_sf, bin),
-                                 so = cfc60(bins_so, bin);
+                                 so = cfc60(bins_so, bin), sp = cfc60(bins_sp, bin);
     auto at = [&](const damping::SampledSignal& sig, double t) {  // linear interpolation in the record
         const double u = std::clamp((t - sig.t0) / sig.dt, 0.0, static_cast<double>(sig.size() - 1));
         const std::size_t i = std::min(static_cast<std::size_t>(u), sig.size() - 2);
@@ -401,18 +482,21 @@ Result run_case(const Case& c, double finger_h, const std::filesystem::path& out
     for (double t : r.t) {
         r.fx.push_back(at(fx, t)), r.fy.push_back(at(fy, t));
         r.f.push_back(std::hypot(r.fx.back(), r.fy.back()));
-        r.s_finger.push_back(at(sf, t)), r.s_object.push_back(at(so, t));
+        r.s_finger.push_back(at(sf, t)), r.s_object.push_back(at(so, t)), r.s_patch.push_back(at(sp, t));
     }
     // The checked maxima: the window's record alone, filtered as a run that stopped there would
     // filter it (same bits with and without --full).
     const auto head = [&](const std::vector<double>& v) { return std::vector<double>(v.begin(), v.begin() + window_bins); };
     const damping::SampledSignal wfx = cfc60(head(bins_fx), bin), wfy = cfc60(head(bins_fy), bin),
-                                 wsf = cfc60(head(bins_sf), bin), wso = cfc60(head(bins_so), bin);
+                                 wsf = cfc60(head(bins_sf), bin), wso = cfc60(head(bins_so), bin),
+                                 wsp = cfc60(head(bins_sp), bin);
     for (std::size_t i = 0; i < wfx.size(); ++i) {
         r.f_max = std::max(r.f_max, std::hypot(wfx.x[i], wfy.x[i]));
         r.s_finger_max = std::max(r.s_finger_max, wsf.x[i]);
         r.s_object_max = std::max(r.s_object_max, wso.x[i]);
+        r.s_patch_max = std::max(r.s_patch_max, wsp.x[i]);
     }
+    for (std::size_t i = 0; i < window_bins; ++i) r.s_patch_raw_max = std::max(r.s_patch_raw_max, bins_sp[i]);
     double& fc_max = r.f_contact_max;
     for (std::size_t i = 0; i < window_rows; ++i) {
         r.f_mean2ms_max = std::max(r.f_mean2ms_max, r.f_mean2ms[i]);
@@ -427,11 +511,11 @@ Result run_case(const Case& c, double finger_h, const std::filesystem::path& out
             if (r.t_first < 0) r.t_first = r.t[i];
             r.t_last = r.t[i];
         }
-    fmt::print("[ {} ] CFC 60 maxima: F {:.3f} N, sigma_finger {:.3f} MPa, sigma_object {:.3f} MPa; raw: F (2 ms means) "
-               "{:.3f} N, sigma_finger {:.3f} MPa, sigma_object {:.3f} MPa; contact {:.3f}..{:.3f} s, "
-               "{} steps, dt {:.3g} us, energy error {:.3g}, {:.1f} s\n",
-               c.name, r.f_max, r.s_finger_max / 1e6, r.s_object_max / 1e6, r.f_mean2ms_max, r.s_finger_raw_max / 1e6,
-               r.s_object_raw_max / 1e6, r.t_first, r.t_last, r.steps,
+    fmt::print("[ {} ] CFC 60 maxima: F {:.3f} N, sigma_finger {:.3f} MPa, sigma_object {:.3f} MPa, object patch {:.3f} MPa; "
+               "raw: F (2 ms means) {:.3f} N, sigma_finger {:.3f} MPa, sigma_object {:.3f} MPa, object patch {:.3f} MPa; "
+               "contact {:.3f}..{:.3f} s, {} steps, dt {:.3g} us, energy error {:.3g}, {:.1f} s\n",
+               c.name, r.f_max, r.s_finger_max / 1e6, r.s_object_max / 1e6, r.s_patch_max / 1e6, r.f_mean2ms_max,
+               r.s_finger_raw_max / 1e6, r.s_object_raw_max / 1e6, r.s_patch_raw_max / 1e6, r.t_first, r.t_last, r.steps,
                1e6 * r.summary.min_dt, r.summary.energy.relative_error(), r.wall);
     return r;
 }
@@ -449,7 +533,8 @@ void write_series(const std::filesystem::path& path, const Result& r) {
     t.add("t_s", r.t).add("F_cfc60_N", r.f).add("Fx_cfc60_N", r.fx).add("Fy_cfc60_N", r.fy)
         .add("sigma_finger_cfc60_MPa", mpa(r.s_finger)).add("sigma_object_cfc60_MPa", mpa(r.s_object))
         .add("contact_x_mm", cx).add("contact_y_mm", cy).add("F_mean_2ms_N", r.f_mean2ms).add("F_contact_N", r.f_contact)
-        .add("sigma_finger_raw_MPa", mpa(r.s_finger_raw)).add("sigma_object_raw_MPa", mpa(r.s_object_raw));
+        .add("sigma_finger_raw_MPa", mpa(r.s_finger_raw)).add("sigma_object_raw_MPa", mpa(r.s_object_raw))
+        .add("sigma_object_patch_cfc60_MPa", mpa(r.s_patch));
     io::write_dat(path, t);
 }
 
@@ -471,6 +556,7 @@ int main(int argc, char** argv) {
     return check::run_study("rotating_finger_contact", argc, argv, [](check::Study& study) {
         const auto& out = study.results_dir();
         if (std::getenv("ROTFINGER_STATIC")) {  // the static mesh convergence alone (README), no checks
+            object_stress_convergence(out);
             finger_root_convergence(out);
             return;
         }
@@ -553,6 +639,10 @@ int main(int argc, char** argv) {
             so_other.push_back(res.at(name).s_object_max / 1e6);
         study.check("table-3-7/cases/sigma-object-max", so_al);
         study.check("table-3-7/cases/sigma-object-max-not-reproduced", so_other);
+        std::vector<double> patch;
+        for (const char* name : {"alpha-7.5", "alpha-1", "alpha-20", "alpha-50", "alpha-180", "alpha-600", "E-finger-4.2", "E-object-6.1MPa"})
+            patch.push_back(res.at(name).s_patch_max / 1e6);
+        study.check("table-3-7/cases/sigma-object-patch", patch);
 
         const Result& a180 = res.at("alpha-180");
         const Result& a600 = res.at("alpha-600");
