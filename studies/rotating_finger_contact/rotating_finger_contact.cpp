@@ -16,7 +16,9 @@
 //   - the drum starts at angle 0 (finger along +x) from rest-undeformed, i.e. ~0.3 s before the
 //     first contact; a run ends 50 ms after the finger has left the object (at most at the thesis's
 //     3 s, Table 3-6);
-//   - reaction force: the sensor reaction filtered with SAE J211 CFC 60 (README: why).
+//   - reaction force: the sensor reaction filtered with SAE J211 CFC 60 (README: why);
+//   - object stress also as a patch mean around the contact point, which converges with the object
+//     mesh (issue 13 item 3); ROTFINGER_STATIC runs the static mesh convergence studies instead.
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
