@@ -16,7 +16,9 @@
 //   - the drum starts at angle 0 (finger along +x) from rest-undeformed, i.e. ~0.3 s before the
 //     first contact; a run ends 50 ms after the finger has left the object (at most at the thesis's
 //     3 s, Table 3-6);
-//   - reaction force: the sensor reaction filtered with SAE J211 CFC 60 (README: why).
+//   - reaction force: the sensor reaction filtered with SAE J211 CFC 60 (README: why);
+//   - object stress also as a patch mean around the contact point, which converges with the object
+//     mesh (issue 13 item 3); ROTFINGER_STATIC runs the static mesh convergence studies instead.
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
@@ -26,6 +28,8 @@
 #include <numbers>
 #include <vector>
 
+#include "assembly/model.hpp"
+#include "assembly/static_solve.hpp"
 #include "check/cases.hpp"
 #include "check/study.hpp"
 #include "contact/contact.hpp"
@@ -33,6 +37,7 @@
 #include "core/error.hpp"
 #include "core/units.hpp"
 #include "damping/signal.hpp"
+#include "element/hex8_explicit.hpp"
 #include "explicit/solver.hpp"
 #include "io/table.hpp"
 #include "mesh/finger.hpp"
@@ -49,6 +54,20 @@ constexpr double kFingerLength = 203.2e-3;       // 8 inch
 const Vec3 kObjectCentre(101.6e-3, 184.15e-3, 0.0);  // Sec 3.5
 constexpr double kObjA = 99.1e-3, kObjB = 67.3e-3, kObjT = 25e-3;  // Table 3-4
 constexpr double kSensorRadius = 20e-3;          // Table 3-4
+// The object stress that converges with the object mesh (issue 13 item 3, README): the volume mean of
+// the element von Mises stress over the elements whose centroids lie within this distance of the
+// contact point (half the object's thickness; about the size of the thesis's object elements).
+constexpr double kPatchRadius = 12.5e-3;
+
+// Volume mean of `von_mises` over the elements whose centroid lies within kPatchRadius of `p` (0 when
+// there is none).
+double patch_mean(const std::vector<double>& von_mises, const std::vector<double>& volume,
+                  const std::vector<Vec3>& centroid, const Vec3& p) {
+    double sv = 0, v = 0;
+    for (std::size_t e = 0; e < von_mises.size(); ++e)
+        if ((centroid[e] - p).norm() < kPatchRadius) sv += von_mises[e] * volume[e], v += volume[e];
+    return v > 0 ? sv / v : 0.0;
+}
 
 struct Case {
     std::string name;
@@ -68,8 +87,10 @@ struct Result {
     // reaction's 2 ms mean and the raw stress maxima over the 2 ms; the contact force (2 ms mean of
     // |sum of contact forces|); the contact point.
     std::vector<double> t, f, fx, fy, f_mean2ms, f_contact, s_finger, s_object, s_finger_raw, s_object_raw, cx, cy;
+    std::vector<double> s_patch;  // the object's patch-mean stress (CFC 60) at the row time
     double f_max = 0, f_mean2ms_max = 0, s_finger_max = 0, s_object_max = 0, t_first = -1, t_last = -1;
     double s_finger_raw_max = 0, s_object_raw_max = 0, f_contact_max = 0;
+    double s_patch_max = 0, s_patch_raw_max = 0;  // the object's patch-mean stress (kPatchRadius): CFC 60, raw
     double wall = 0;
     long steps = 0;
     // finger outline snapshots (leading and trailing edge polylines) every 0.05 s (c.snapshots)
@@ -83,6 +104,205 @@ struct Result {
 // maxima. Returns the filtered record.
 damping::SampledSignal cfc60(std::vector<double> bins, double bin) {
     return damping::cfc_filter(damping::SampledSignal{0.5 * bin, bin, std::move(bins)}, 60.0);
+}
+
+
+// --- Static mesh convergence (issue 13 items 2 and 3; ROTFINGER_STATIC=1, README) -----------------
+//
+// The dynamic runs report element-centre stresses of one-point hexahedra, as LS-DYNA does: the
+// value of the element's mean strain, i.e. at its centre. How that value depends on the mesh is a
+// question of statics (the drum turns slowly: the finger's peak is quasi-static), so it is measured
+// here on linear static solutions of the SAME element: the one-point hexahedron with its
+// Flanagan-Belytschko hourglass stiffness (QM 0.1), linearized about the undeformed state.
+
+// Stiffness of the explicit one-point hexahedron (element/hex8_explicit) at the undeformed state,
+// by central differences of its internal forces (neo-Hookean -> the linear material at small
+// strain; the differences are exact to ~1e-9 relative for a step of 1e-7 of the element size).
+ElementMatrices one_point_hex8_stiffness(std::span<const Vec3> x, const hex8::Hex8Material& mat) {
+    std::array<Vec3, 8> X;
+    std::copy(x.begin(), x.end(), X.begin());
+    const hex8::Hex8Reference ref = hex8::make_reference(X, "static convergence hex8");
+    const double eps = 1e-7 * std::cbrt(ref.volume);
+    std::array<Vec3, 8> u, v;  // (Eigen vectors are not zeroed by {})
+    v.fill(Vec3::Zero());
+    hex8::Hex8Result plus, minus;
+    Eigen::MatrixXd K(24, 24);
+    for (int j = 0; j < 24; ++j) {
+        u.fill(Vec3::Zero());
+        u[j / 3][j % 3] = eps;
+        hex8::internal_force(ref, mat, u, v, -1, plus);
+        u[j / 3][j % 3] = -eps;
+        hex8::internal_force(ref, mat, u, v, -1, minus);
+        for (int a = 0; a < 8; ++a)
+            for (int i = 0; i < 3; ++i) K(3 * a + i, j) = (plus.force[a][i] - minus.force[a][i]) / (2 * eps);
+    }
+    return {0.5 * (K + K.transpose()), Eigen::MatrixXd::Zero(24, 24)};
+}
+
+// Linear static solution of `mesh` (every block one-point hexahedra of material m) under nodal
+// forces `f`, nodes `fixed` clamped; returns each element's centre von Mises stress and centroid.
+struct ElementField {
+    std::vector<double> von_mises, volume;
+    std::vector<Vec3> centroid;
+};
+ElementField solve_one_point_static(const Mesh& mesh, const ElasticMaterial& m, const std::vector<int>& fixed,
+                                    const std::vector<Vec3>& f) {
+    const hex8::Hex8Material mat = hex8::Hex8Material::from(m);
+    Model model(mesh);
+    for (int b = 0; b < static_cast<int>(mesh.blocks.size()); ++b)
+        model.add_block(b, 3, [&](std::span<const Vec3> x, int) { return one_point_hex8_stiffness(x, mat); });
+    model.fix_nodes(fixed);
+    const std::vector<Vec3> u = solve_linear_static(model.assemble(), f);
+    ElementField out;
+    for (int b = 0; b < static_cast<int>(mesh.blocks.size()); ++b)
+        for (int e = 0; e < mesh.blocks[b].size(); ++e) {
+            std::array<Vec3, 8> X, ue, ve;
+            ve.fill(Vec3::Zero());
+            const auto nodes = mesh.blocks[b].element(e);
+            Vec3 c = Vec3::Zero();
+            for (int a = 0; a < 8; ++a) X[a] = mesh.nodes[nodes[a]], ue[a] = u[nodes[a]], c += X[a] / 8;
+            const hex8::Hex8Reference ref = hex8::make_reference(X, "static convergence hex8");
+            hex8::Hex8Result r;
+            hex8::internal_force(ref, mat, ue, ve, -1, r);
+            out.von_mises.push_back(r.von_mises), out.volume.push_back(ref.volume), out.centroid.push_back(c);
+        }
+    return out;
+}
+
+// Item 2: the finger's root stress. At the peak of the general case (thesis mesh, t = 0.71-0.80 s)
+// the root carries a bending moment of 1.23-1.37 N m about the section's major axis, with a
+// transverse force of only 3-8 N (lever M / V = 170-480 mm) and an axial force whose stress is 2 %
+// of the bending stress: the root is in nearly pure bending. So: a stub of the finger's section,
+// 8 x 3.984 mm long (whole layers for every mapped mesh), clamped at its root, loaded at its tip face
+// by a pure couple M about the major axis (axial nodal forces linear in y: no net force).
+// Meshes: the study's O-grid (6 mm) and its half (3 mm); the thesis's mapped 5 x 5 (Table 3-5;
+// layer 3.984 mm) and its halves h/2, h/4 (10 x 10, 20 x 20 sections, layers halved).
+// Reported per mesh: the largest element-centre stress (the root's: what Table 3-7's "max stress in
+// the finger" is on that mesh) over Euler-Bernoulli's surface stress M b / I, and the largest
+// centre stress of the layer nearest mid-stub over beam theory at that element's centroid, M y_c / I
+// (how well the element represents the bending field away from the clamp).
+void finger_root_convergence(const std::filesystem::path& out) {
+    // M small enough that the linear solution's rotations (kappa z ~ 1e-5 rad) add no spurious
+    // stretch when the element's (large-deformation) kernel evaluates its stress; stresses per N m.
+    const double layer = 3.984e-3, length = 8 * layer, M = 1e-6;
+    const fem::finger::EllipticCylinder stub{12e-3, 8.45e-3, length};
+    const auto rubber = ElasticMaterial::make("rubber", 6.1e6, 0.49, 1000);
+    const double I = pi * stub.a * std::pow(stub.b, 3) / 4, beam_surface = M * stub.b / I;
+    struct Level {
+        std::string name;
+        Mesh mesh;
+    };
+    std::vector<Level> levels;
+    levels.push_back({"O-grid 6 mm (study)", fem::finger::hex_finger(stub, 6e-3)});
+    levels.push_back({"O-grid 3 mm", fem::finger::hex_finger(stub, 3e-3)});
+    const int finest = std::atoi(std::getenv("ROTFINGER_STATIC"));  // 1: h, 2: also h/2, 3: also h/4
+    for (int k = 1; k <= std::clamp(finest, 1, 3); ++k)
+        levels.push_back({fmt::format("mapped {0} x {0}, layer {1:.3f} mm", 5 << (k - 1), 1e3 * layer / (1 << (k - 1))),
+                          fem::finger::hex_finger(stub, fem::finger::mapped_cross_section(5 << (k - 1)), 8 << (k - 1))});
+    io::Table t;
+    std::vector<double> elements, peak, peak_ratio, mid_ratio, z_peak, y_peak;
+    fmt::print("finger stub {:.1f} mm, tip couple about the major axis: beam theory M b / I = {:.4g} Pa per N m\n",
+               1e3 * length, beam_surface / M);
+    for (auto& [name, mesh] : levels) {
+        // The couple as the consistent nodal forces of the linear traction sigma_zz = M y / I_h on the
+        // tip faces (2 x 2 Gauss on each face; I_h is the meshed polygon's, so that the couple is M).
+        // The tip face of a hexahedron of the last layer is nodes 4..7 (lib/mesh/finger.cpp).
+        const ElementBlock& block = mesh.blocks.front();
+        std::vector<std::array<int, 4>> faces;
+        for (int e = block.size(); e-- > 0;) {
+            const auto n = block.element(e);
+            if (std::abs(mesh.nodes[n[4]].z() - length) > 1e-9) break;
+            faces.push_back({n[4], n[5], n[6], n[7]});
+        }
+        const double g = 1 / std::sqrt(3.0);
+        const auto face_integral = [&](const std::array<int, 4>& q, auto&& add) {  // add(N, y, dA) per Gauss point
+            for (double xi : {-g, g})
+                for (double eta : {-g, g}) {
+                    const std::array<double, 4> N = {(1 - xi) * (1 - eta) / 4, (1 + xi) * (1 - eta) / 4,
+                                                     (1 + xi) * (1 + eta) / 4, (1 - xi) * (1 + eta) / 4};
+                    const std::array<double, 4> dxi = {-(1 - eta) / 4, (1 - eta) / 4, (1 + eta) / 4, -(1 + eta) / 4};
+                    const std::array<double, 4> deta = {-(1 - xi) / 4, -(1 + xi) / 4, (1 + xi) / 4, (1 - xi) / 4};
+                    double y = 0, xx = 0, xe = 0, yx = 0, ye = 0;
+                    for (int a = 0; a < 4; ++a) {
+                        const Vec3& p = mesh.nodes[q[a]];
+                        y += N[a] * p.y(), xx += dxi[a] * p.x(), xe += deta[a] * p.x(), yx += dxi[a] * p.y(), ye += deta[a] * p.y();
+                    }
+                    add(N, y, std::abs(xx * ye - xe * yx));
+                }
+        };
+        double I_h = 0;
+        for (const auto& q : faces) face_integral(q, [&](auto&, double y, double dA) { I_h += y * y * dA; });
+        std::vector<Vec3> f(mesh.node_count(), Vec3::Zero());
+        for (const auto& q : faces)
+            face_integral(q, [&](const std::array<double, 4>& N, double y, double dA) {
+                for (int a = 0; a < 4; ++a) f[q[a]].z() += N[a] * M * y / I_h * dA;
+            });
+        const ElementField s = solve_one_point_static(mesh, rubber, mesh.node_set("root"), f);
+        // The peak over the root half (the tip half carries the load introduction).
+        std::size_t k_peak = 0;
+        double to_mid = length;
+        for (std::size_t e = 0; e < s.von_mises.size(); ++e) {
+            if (s.centroid[e].z() < 0.5 * length && s.von_mises[e] > s.von_mises[k_peak]) k_peak = e;
+            to_mid = std::min(to_mid, std::abs(s.centroid[e].z() - 0.5 * length));
+        }
+        double s_mid = 0, beam_mid = 0;
+        for (std::size_t e = 0; e < s.von_mises.size(); ++e)
+            if (std::abs(s.centroid[e].z() - 0.5 * length) < to_mid + 1e-9 && s.von_mises[e] > s_mid)
+                s_mid = s.von_mises[e], beam_mid = M * std::abs(s.centroid[e].y()) / I;
+        fmt::print("  {:34s} {:6d} elements: largest centre stress {:.4g} Pa per N m = {:.3f} M b/I (centroid z {:.2f} mm, "
+                   "y {:.2f} mm); mid-stub {:.3f} of M y_c/I\n",
+                   name, static_cast<int>(s.von_mises.size()), s.von_mises[k_peak] / M, s.von_mises[k_peak] / beam_surface,
+                   1e3 * s.centroid[k_peak].z(), 1e3 * s.centroid[k_peak].y(), s_mid / beam_mid);
+        std::fflush(stdout);
+        elements.push_back(static_cast<double>(s.von_mises.size()));
+        peak.push_back(s.von_mises[k_peak] / M), peak_ratio.push_back(s.von_mises[k_peak] / beam_surface);
+        z_peak.push_back(1e3 * s.centroid[k_peak].z()), y_peak.push_back(1e3 * s.centroid[k_peak].y());
+        mid_ratio.push_back(s_mid / beam_mid);
+    }
+    t.add("elements", elements).add("peak_Pa_per_Nm", peak).add("peak_over_Mb_I", peak_ratio)
+        .add("peak_centroid_z_mm", z_peak).add("peak_centroid_y_mm", y_peak).add("mid_stub_over_My_I", mid_ratio);
+    io::write_dat(out / "static-finger-root.dat", t);
+}
+
+// Item 3: the object stress. The aluminium object alone (its O-grid at 12 mm as in the study, 6 mm,
+// 3 mm), fixed on its sensor disc, loaded by a unit line force through its thickness at the contact
+// point of the general case's force peak (thesis mesh, t = 0.712 s: (77.8, 119.0) mm in the drum
+// frame, sensor reaction direction (6.37, -15.88) N), spread over the rim's node column nearest to
+// it (trapezoidal weights through the thickness): the finger's 24 mm wide flank spans the 25 mm thick
+// rim. Reported per mesh: the largest element-centre stress (Table 3-7's measure) and the patch mean.
+void object_stress_convergence(const std::filesystem::path& out) {
+    const auto al = ElasticMaterial::make("object", 69e9, 0.33, 2700);
+    const Vec3 contact = Vec3(77.8e-3, 119.0e-3, 0.0) - kObjectCentre, direction = Vec3(6.37, -15.88, 0).normalized();
+    io::Table t;
+    std::vector<double> sizes, elements, peak, patch;
+    fmt::print("object, unit line force at the contact point of the general case's force peak\n");
+    for (double h : {12e-3, 6e-3, 3e-3}) {
+        Mesh object = fem::finger::hex_finger({kObjA, kObjB, kObjT}, h, "object");
+        object.translate(Vec3(0, 0, -0.5 * kObjT));  // centred on z = 0, as in the study (relative to its centre)
+        std::vector<int> sensor;
+        int nearest = 0;
+        for (int i = 0; i < object.node_count(); ++i) {
+            const Vec3& p = object.nodes[i];
+            if (std::abs(p.z() + 0.5 * kObjT) < 1e-9 && std::hypot(p.x(), p.y()) <= kSensorRadius + 1e-9) sensor.push_back(i);
+            if ((p - contact).head<2>().norm() < (object.nodes[nearest] - contact).head<2>().norm()) nearest = i;
+        }
+        std::vector<int> column;
+        for (int i = 0; i < object.node_count(); ++i)
+            if ((object.nodes[i] - object.nodes[nearest]).head<2>().norm() < 1e-9) column.push_back(i);
+        std::vector<Vec3> f(object.node_count(), Vec3::Zero());
+        const double share = 1.0 / (column.size() - 1);  // trapezoidal over the equal layers
+        for (int i : column)
+            f[i] = direction * share * ((std::abs(std::abs(object.nodes[i].z()) - 0.5 * kObjT) < 1e-9) ? 0.5 : 1.0);
+        const ElementField s = solve_one_point_static(object, al, sensor, f);
+        const double pk = *std::max_element(s.von_mises.begin(), s.von_mises.end());
+        const double pm = patch_mean(s.von_mises, s.volume, s.centroid, Vec3(object.nodes[nearest].x(), object.nodes[nearest].y(), 0));
+        fmt::print("  h {:4.1f} mm, {:5d} elements: largest element stress {:.4g} Pa/N, patch mean ({} mm) {:.4g} Pa/N\n", 1e3 * h,
+                   static_cast<int>(s.von_mises.size()), pk, 1e3 * kPatchRadius, pm);
+        std::fflush(stdout);
+        sizes.push_back(1e3 * h), elements.push_back(static_cast<double>(s.von_mises.size())), peak.push_back(pk), patch.push_back(pm);
+    }
+    t.add("h_mm", sizes).add("elements", elements).add("largest_element_Pa_per_N", peak).add("patch_mean_Pa_per_N", patch);
+    io::write_dat(out / "static-object.dat", t);
 }
 
 Result run_case(const Case& c, double finger_h, const std::filesystem::path& out) {
@@ -174,7 +394,30 @@ Result run_case(const Case& c, double finger_h, const std::filesystem::path& out
     // interval of 2 ms would report them.
     constexpr double row = 2e-3, bin = 1e-4;
     constexpr double after_contact = 0.05;  // run on this long after the finger has left the object
-    std::vector<double> bins_fx, bins_fy, bins_sf, bins_so;
+    std::vector<double> bins_fx, bins_fy, bins_sf, bins_so, bins_sp;
+    // The object's patch-mean stress (kPatchRadius around the contact point), sampled at each bin's end.
+    const ElementGroup* object_group = nullptr;
+    for (const auto& g : model.groups())
+        if (g->part == "object") object_group = g.get();
+    std::vector<double> object_volume;
+    if (object_group)
+        for (int e = 0; e < mesh.blocks[object_group->block].size(); ++e) {
+            std::array<Vec3, 8> X;
+            const auto n = mesh.blocks[object_group->block].element(e);
+            for (int a = 0; a < 8; ++a) X[a] = mesh.nodes[n[a]];
+            object_volume.push_back(hex8::make_reference(X, "object").volume);
+        }
+    const auto object_patch = [&](const ExplicitSolver& s) {
+        double w = 0;
+        Vec3 p = Vec3::Zero();
+        for (const auto& cp : ci->contacts()) p += cp.normal_force * cp.point, w += cp.normal_force;
+        if (!object_group || w <= 0) return 0.0;
+        const ElementBlock& block = mesh.blocks[object_group->block];
+        std::vector<Vec3> centroid(block.size(), Vec3::Zero());
+        for (int e = 0; e < block.size(); ++e)
+            for (int n : block.element(e)) centroid[e] += s.state().x[n] / 8;
+        return patch_mean(object_group->element_stress(), object_volume, centroid, p / w);
+    };
     double t_prev = 0, next_snap = 0, bin_start = 0, row_start = 0, s_f = 0, s_o = 0, cw = 0, fc_row = 0;
     double bin_sf = 0, bin_so = 0;
     std::size_t window_bins = 0, window_rows = 0;  // bins and rows up to the end of the checked window
@@ -197,6 +440,7 @@ Result run_case(const Case& c, double finger_h, const std::filesystem::path& out
         if (s.time() >= (bins_fx.size() + 1) * bin - 1e-12) {
             const Vec3 Fm = bin_impulse / (s.time() - bin_start);
             bins_fx.push_back(Fm.x()), bins_fy.push_back(Fm.y()), bins_sf.push_back(bin_sf), bins_so.push_back(bin_so);
+            bins_sp.push_back(object_patch(s));
             bin_start = s.time(), bin_impulse.setZero(), bin_sf = 0, bin_so = 0;
         }
         // Contact force (the interface's resultant) and location: force- and time-weighted centroid of
@@ -233,7 +477,7 @@ Result run_case(const Case& c, double finger_h, const std::filesystem::path& out
     if (window_bins == 0) window_bins = bins_fx.size(), window_rows = r.t.size();  // contact never ended
     // The plotted histories: the whole record.
     const damping::SampledSignal fx = cfc60(bins_fx, bin), fy = cfc60(bins_fy, bin), sf = cfc60(bins_sf, bin),
-                                 so = cfc60(bins_so, bin);
+                                 so = cfc60(bins_so, bin), sp = cfc60(bins_sp, bin);
     auto at = [&](const damping::SampledSignal& sig, double t) {  // linear interpolation in the record
         const double u = std::clamp((t - sig.t0) / sig.dt, 0.0, static_cast<double>(sig.size() - 1));
         const std::size_t i = std::min(static_cast<std::size_t>(u), sig.size() - 2);
@@ -242,18 +486,21 @@ Result run_case(const Case& c, double finger_h, const std::filesystem::path& out
     for (double t : r.t) {
         r.fx.push_back(at(fx, t)), r.fy.push_back(at(fy, t));
         r.f.push_back(std::hypot(r.fx.back(), r.fy.back()));
-        r.s_finger.push_back(at(sf, t)), r.s_object.push_back(at(so, t));
+        r.s_finger.push_back(at(sf, t)), r.s_object.push_back(at(so, t)), r.s_patch.push_back(at(sp, t));
     }
     // The checked maxima: the window's record alone, filtered as a run that stopped there would
     // filter it (same bits with and without --full).
     const auto head = [&](const std::vector<double>& v) { return std::vector<double>(v.begin(), v.begin() + window_bins); };
     const damping::SampledSignal wfx = cfc60(head(bins_fx), bin), wfy = cfc60(head(bins_fy), bin),
-                                 wsf = cfc60(head(bins_sf), bin), wso = cfc60(head(bins_so), bin);
+                                 wsf = cfc60(head(bins_sf), bin), wso = cfc60(head(bins_so), bin),
+                                 wsp = cfc60(head(bins_sp), bin);
     for (std::size_t i = 0; i < wfx.size(); ++i) {
         r.f_max = std::max(r.f_max, std::hypot(wfx.x[i], wfy.x[i]));
         r.s_finger_max = std::max(r.s_finger_max, wsf.x[i]);
         r.s_object_max = std::max(r.s_object_max, wso.x[i]);
+        r.s_patch_max = std::max(r.s_patch_max, wsp.x[i]);
     }
+    for (std::size_t i = 0; i < window_bins; ++i) r.s_patch_raw_max = std::max(r.s_patch_raw_max, bins_sp[i]);
     double& fc_max = r.f_contact_max;
     for (std::size_t i = 0; i < window_rows; ++i) {
         r.f_mean2ms_max = std::max(r.f_mean2ms_max, r.f_mean2ms[i]);
@@ -268,11 +515,11 @@ Result run_case(const Case& c, double finger_h, const std::filesystem::path& out
             if (r.t_first < 0) r.t_first = r.t[i];
             r.t_last = r.t[i];
         }
-    fmt::print("[ {} ] CFC 60 maxima: F {:.3f} N, sigma_finger {:.3f} MPa, sigma_object {:.3f} MPa; raw: F (2 ms means) "
-               "{:.3f} N, sigma_finger {:.3f} MPa, sigma_object {:.3f} MPa; contact {:.3f}..{:.3f} s, "
-               "{} steps, dt {:.3g} us, energy error {:.3g}, {:.1f} s\n",
-               c.name, r.f_max, r.s_finger_max / 1e6, r.s_object_max / 1e6, r.f_mean2ms_max, r.s_finger_raw_max / 1e6,
-               r.s_object_raw_max / 1e6, r.t_first, r.t_last, r.steps,
+    fmt::print("[ {} ] CFC 60 maxima: F {:.3f} N, sigma_finger {:.3f} MPa, sigma_object {:.3f} MPa, object patch {:.3f} MPa; "
+               "raw: F (2 ms means) {:.3f} N, sigma_finger {:.3f} MPa, sigma_object {:.3f} MPa, object patch {:.3f} MPa; "
+               "contact {:.3f}..{:.3f} s, {} steps, dt {:.3g} us, energy error {:.3g}, {:.1f} s\n",
+               c.name, r.f_max, r.s_finger_max / 1e6, r.s_object_max / 1e6, r.s_patch_max / 1e6, r.f_mean2ms_max,
+               r.s_finger_raw_max / 1e6, r.s_object_raw_max / 1e6, r.s_patch_raw_max / 1e6, r.t_first, r.t_last, r.steps,
                1e6 * r.summary.min_dt, r.summary.energy.relative_error(), r.wall);
     return r;
 }
@@ -290,7 +537,8 @@ void write_series(const std::filesystem::path& path, const Result& r) {
     t.add("t_s", r.t).add("F_cfc60_N", r.f).add("Fx_cfc60_N", r.fx).add("Fy_cfc60_N", r.fy)
         .add("sigma_finger_cfc60_MPa", mpa(r.s_finger)).add("sigma_object_cfc60_MPa", mpa(r.s_object))
         .add("contact_x_mm", cx).add("contact_y_mm", cy).add("F_mean_2ms_N", r.f_mean2ms).add("F_contact_N", r.f_contact)
-        .add("sigma_finger_raw_MPa", mpa(r.s_finger_raw)).add("sigma_object_raw_MPa", mpa(r.s_object_raw));
+        .add("sigma_finger_raw_MPa", mpa(r.s_finger_raw)).add("sigma_object_raw_MPa", mpa(r.s_object_raw))
+        .add("sigma_object_patch_cfc60_MPa", mpa(r.s_patch));
     io::write_dat(path, t);
 }
 
@@ -311,6 +559,11 @@ void write_outlines(const std::filesystem::path& path, const Result& r) {
 int main(int argc, char** argv) {
     return check::run_study("rotating_finger_contact", argc, argv, [](check::Study& study) {
         const auto& out = study.results_dir();
+        if (std::getenv("ROTFINGER_STATIC")) {  // the static mesh convergence alone (README), no checks
+            if (!std::getenv("ROTFINGER_STATIC_FINGER_ONLY")) object_stress_convergence(out);
+            finger_root_convergence(out);
+            return;
+        }
         // Development switches: ROTFINGER_ONLY=<case> runs one case without checks; ROTFINGER_END=<s>
         // caps the simulated time; ROTFINGER_H=<m> sets the finger element length (convergence runs);
         // ROTFINGER_MAPPED=<n> meshes the finger's section as one mapped n x n block (run_case).
@@ -390,6 +643,10 @@ int main(int argc, char** argv) {
             so_other.push_back(res.at(name).s_object_max / 1e6);
         study.check("table-3-7/cases/sigma-object-max", so_al);
         study.check("table-3-7/cases/sigma-object-max-not-reproduced", so_other);
+        std::vector<double> patch;
+        for (const char* name : {"alpha-7.5", "alpha-1", "alpha-20", "alpha-50", "alpha-180", "alpha-600", "E-finger-4.2", "E-object-6.1MPa"})
+            patch.push_back(res.at(name).s_patch_max / 1e6);
+        study.check("table-3-7/cases/sigma-object-patch", patch);
 
         const Result& a180 = res.at("alpha-180");
         const Result& a600 = res.at("alpha-600");
