@@ -110,7 +110,7 @@ FUZZ_RUNS    ?= 100000
 FUZZ_TARGETS := gmsh modal_case topopt_case explicit_case deck
 fuzz: deps
 	@[ -f $(FUZZ_BUILD)/.configured ] || { cmake -S . -B $(FUZZ_BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-	  -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ -DFEM_FUZZ=ON && touch $(FUZZ_BUILD)/.configured; }
+	  -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ -DFEM_FUZZ=ON $(CCACHE_LAUNCHER) && touch $(FUZZ_BUILD)/.configured; }
 	cmake --build $(FUZZ_BUILD) -j $(JOBS) --target $(addprefix fuzz_,$(FUZZ_TARGETS))
 	@set -e; for t in $(FUZZ_TARGETS); do \
 	  mkdir -p $(FUZZ_BUILD)/corpus/$$t; echo "== fuzz_$$t: $(FUZZ_RUNS) executions"; \
@@ -127,7 +127,7 @@ SANITIZE_BUILD   ?= build-sanitize
 SANITIZE_STUDIES ?= cfl_tables portal_frame_modes finger_twist topology_cases
 sanitize: deps
 	@[ -f $(SANITIZE_BUILD)/.configured ] || { cmake -S . -B $(SANITIZE_BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-	  -DFEM_SANITIZE=ON && touch $(SANITIZE_BUILD)/.configured; }
+	  -DFEM_SANITIZE=ON $(CCACHE_LAUNCHER) && touch $(SANITIZE_BUILD)/.configured; }
 	cmake --build $(SANITIZE_BUILD) -j $(JOBS)
 	cd $(SANITIZE_BUILD) && $(SANITIZER_ENV) ctest --output-on-failure -j $(JOBS) -L unit
 	cd $(SANITIZE_BUILD) && $(SANITIZER_ENV) ctest --output-on-failure -j $(JOBS) \
