@@ -247,7 +247,6 @@ std::string export_case_deck(const ModalCase& c, const std::filesystem::path& pa
         for (int b : mesh.blocks_of_part(p.name)) {
             const std::string type = element_type(p, mesh.blocks[b]);
             d.block_types.push_back(type);
-            d.element_ids.emplace_back();
             d.block_section.push_back(static_cast<int>(d.sections.size()));
             d.mesh.blocks[b].part = p.name;
             std::string elset = fmt::format("{}_{}", p.name, b);  // a deck name: letters, digits, '_'
