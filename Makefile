@@ -123,11 +123,12 @@ fuzz: deps
 
 # Sanitizers: everything built with ASan + UBSan in $(SANITIZE_BUILD); runs the unit tests and the
 # short studies (the long ones, minutes each in a normal build, take 3-10x longer instrumented).
+# Neither the benchmarks (CMakeLists.txt) nor the MPI programs are built there: neither is run.
 SANITIZE_BUILD   ?= build-sanitize
 SANITIZE_STUDIES ?= cfl_tables portal_frame_modes finger_twist topology_cases
 sanitize: deps
 	@[ -f $(SANITIZE_BUILD)/.configured ] || { cmake -S . -B $(SANITIZE_BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-	  -DFEM_SANITIZE=ON $(CCACHE_LAUNCHER) && touch $(SANITIZE_BUILD)/.configured; }
+	  -DFEM_SANITIZE=ON -DFEM_MPI=OFF $(CCACHE_LAUNCHER) && touch $(SANITIZE_BUILD)/.configured; }
 	cmake --build $(SANITIZE_BUILD) -j $(JOBS)
 	cd $(SANITIZE_BUILD) && $(SANITIZER_ENV) ctest --output-on-failure -j $(JOBS) -L unit
 	cd $(SANITIZE_BUILD) && $(SANITIZER_ENV) ctest --output-on-failure -j $(JOBS) \
