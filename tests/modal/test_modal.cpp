@@ -323,6 +323,20 @@ TEST(Modal, NumericalFailuresNameTheirCause) {
     EXPECT_NE(modal_error(K_1, M_tiny, o).find("the eigenvalues overflow double precision: stiffness diagonal from 1 to 9"),
               std::string::npos)
         << modal_error(K_1, M_tiny, o);
+    // A shift that dwarfs the largest K_ii / M_ii (9): K would be lost in the round-off of K - sigma M.
+    o.shift_hz = -1e10;
+    EXPECT_NE(modal_error(K, M, o).find("shift_hz = -1e+10 Hz gives the shift sigma = -3.95e+21 rad^2/s^2, 4.39e+20 x the "
+                                        "largest K_ii / M_ii (9 rad^2/s^2"),
+              std::string::npos)
+        << modal_error(K, M, o);
+    o.shift_hz = 0;
+    // A tiny modulus is not a failure: the eigenvalue 1e-200 and a finite residual (the plain
+    // 2-norm of K phi underflowed to 0 / 0 = NaN).
+    const auto [K_tiny, M_1] = diagonal_problem(1e-200);
+    const modal::ModalResult tiny = modal::solve_modes(K_tiny, M_1, o);
+    EXPECT_NEAR(tiny.eigenvalues(0) / 1e-200, 1.0, 1e-12);
+    EXPECT_TRUE(std::isfinite(tiny.residuals(0))) << tiny.residuals(0);
+    EXPECT_LT(tiny.residuals(0), 1e-12);
     const modal::Conditioning c(K, M);
     EXPECT_EQ(c.k_max / c.k_min, 9.0);
     EXPECT_EQ(c.dof_k_max, 2);
