@@ -842,9 +842,9 @@ void ExplicitSolver::unstable(const std::string& why, int bad_group, int bad_ele
         cause = fmt::format("a deformation the mesh cannot follow (the element's volume is now {:.3g} x its initial "
                             "one): {}", ratio, too_large);
     throw SolverError(fmt::format(
-        "explicit run '{}' went unstable at t = {:.6g} s (cycle {}): {} in {}. Likely cause: {}. Step used {:.4g} s, "
+        "explicit run '{}' went unstable at t = {:.6g} s (cycle {}) in {}: {}. Likely cause: {}. Step used {:.4g} s, "
         "critical step {:.4g} s ({}); largest kinetic energy at the node initially at {:.4g}, {:.4g}, {:.4g}",
-        opt_.name, t_, step_, why, place, cause, dt_used, dt_crit_, element_name(dt_group_, dt_element_),
+        opt_.name, t_, step_, place, why, cause, dt_used, dt_crit_, element_name(dt_group_, dt_element_),
         worst >= 0 ? s_.X[worst].x() : 0.0, worst >= 0 ? s_.X[worst].y() : 0.0, worst >= 0 ? s_.X[worst].z() : 0.0));
 }
 
@@ -1622,7 +1622,9 @@ RunSummary ExplicitSolver::run() {
         summary_.controlling_part = g.part;
         summary_.controlling_kind = g.kind();
         summary_.controlling_block = g.block;
-        summary_.controlling_element = ctrl_element_;
+        // Its number as the user knows it (ElementBlock::id), as the messages name elements.
+        summary_.controlling_element =
+            static_cast<int>(g.block >= 0 ? model_.mesh().blocks[g.block].id(ctrl_element_) : ctrl_element_ + 1L);
         summary_.controlling_rule = g.time_step_rule(ctrl_element_);
     }
     // Timing table and contact interfaces (the final HDF5 below counts as output, measured first).

@@ -291,8 +291,7 @@ TEST(ExplicitStability, StableAtPointNineCriticalAndDetectedAboveTwoOverOmegaMax
             // fixed step above the critical one (issue 14 item 5).
             const std::string msg = e.what();
             EXPECT_NE(msg.find("went unstable at t = "), std::string::npos) << msg;
-            EXPECT_NE(msg.find(fmt::format("(cycle {})", s.step())), std::string::npos) << msg;
-            EXPECT_NE(msg.find(" in part 'cube' hex8 element "), std::string::npos) << msg;
+            EXPECT_NE(msg.find(fmt::format("(cycle {}) in part 'cube' hex8 element ", s.step())), std::string::npos) << msg;
             EXPECT_NE(msg.find("Likely cause: the fixed time step"), std::string::npos) << msg;
             EXPECT_NE(msg.find("is above the critical step"), std::string::npos) << msg;
         }
@@ -326,9 +325,10 @@ TEST(ExplicitStability, InvertedElementNamedByItsFileNumberWithTimeCycleAndCause
         FAIL() << "an element crushed in one step ran to the end";
     } catch (const SolverError& e) {
         const std::string msg = e.what();
-        EXPECT_NE(msg.find(fmt::format("went unstable at t = {:.6g} s (cycle {})", s.time(), s.step())), std::string::npos)
-            << msg;
-        EXPECT_NE(msg.find("in part 'block' hex8 element 102 (initially centred at 0.005, 0.005, 0.0075)"), std::string::npos)
+        EXPECT_NE(msg.find(fmt::format("went unstable at t = {:.6g} s (cycle {}) in part 'block' hex8 element 102 "
+                                       "(initially centred at 0.005, 0.005, 0.0075): an element inverted",
+                                       s.time(), s.step())),
+                  std::string::npos)
             << msg;
         EXPECT_NE(msg.find("Likely cause: the element inverted"), std::string::npos) << msg;
         EXPECT_GE(s.step(), 1);

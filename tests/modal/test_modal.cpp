@@ -330,13 +330,6 @@ TEST(Modal, NumericalFailuresNameTheirCause) {
               std::string::npos)
         << modal_error(K, M, o);
     o.shift_hz = 0;
-    // A tiny modulus is not a failure: the eigenvalue 1e-200 and a finite residual (the plain
-    // 2-norm of K phi underflowed to 0 / 0 = NaN).
-    const auto [K_tiny, M_1] = diagonal_problem(1e-200);
-    const modal::ModalResult tiny = modal::solve_modes(K_tiny, M_1, o);
-    EXPECT_NEAR(tiny.eigenvalues(0) / 1e-200, 1.0, 1e-12);
-    EXPECT_TRUE(std::isfinite(tiny.residuals(0))) << tiny.residuals(0);
-    EXPECT_LT(tiny.residuals(0), 1e-12);
     const modal::Conditioning c(K, M);
     EXPECT_EQ(c.k_max / c.k_min, 9.0);
     EXPECT_EQ(c.dof_k_max, 2);
