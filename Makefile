@@ -110,7 +110,7 @@ FUZZ_RUNS    ?= 100000
 FUZZ_TARGETS := gmsh modal_case topopt_case explicit_case deck
 fuzz: deps
 	@[ -f $(FUZZ_BUILD)/.configured ] || { cmake -S . -B $(FUZZ_BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-	  -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ -DFEM_FUZZ=ON && touch $(FUZZ_BUILD)/.configured; }
+	  -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ -DFEM_FUZZ=ON $(CCACHE_LAUNCHER) && touch $(FUZZ_BUILD)/.configured; }
 	cmake --build $(FUZZ_BUILD) -j $(JOBS) --target $(addprefix fuzz_,$(FUZZ_TARGETS))
 	@set -e; for t in $(FUZZ_TARGETS); do \
 	  mkdir -p $(FUZZ_BUILD)/corpus/$$t; echo "== fuzz_$$t: $(FUZZ_RUNS) executions"; \
@@ -123,11 +123,12 @@ fuzz: deps
 
 # Sanitizers: everything built with ASan + UBSan in $(SANITIZE_BUILD); runs the unit tests and the
 # short studies (the long ones, minutes each in a normal build, take 3-10x longer instrumented).
+# Neither the benchmarks (CMakeLists.txt) nor the MPI programs are built there: neither is run.
 SANITIZE_BUILD   ?= build-sanitize
 SANITIZE_STUDIES ?= cfl_tables portal_frame_modes finger_twist topology_cases
 sanitize: deps
 	@[ -f $(SANITIZE_BUILD)/.configured ] || { cmake -S . -B $(SANITIZE_BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-	  -DFEM_SANITIZE=ON && touch $(SANITIZE_BUILD)/.configured; }
+	  -DFEM_SANITIZE=ON -DFEM_MPI=OFF $(CCACHE_LAUNCHER) && touch $(SANITIZE_BUILD)/.configured; }
 	cmake --build $(SANITIZE_BUILD) -j $(JOBS)
 	cd $(SANITIZE_BUILD) && $(SANITIZER_ENV) ctest --output-on-failure -j $(JOBS) -L unit
 	cd $(SANITIZE_BUILD) && $(SANITIZER_ENV) ctest --output-on-failure -j $(JOBS) \

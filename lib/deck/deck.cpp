@@ -602,11 +602,10 @@ private:
                 it = block_of.emplace(key, static_cast<int>(d_.mesh.blocks.size())).first;
                 d_.mesh.blocks.push_back({d_.sections[section_of[e]].elset, shape_of_type(r.type), {}});
                 d_.block_types.push_back(r.type);
-                d_.element_ids.emplace_back();
                 d_.block_section.push_back(section_of[e]);
             }
             d_.mesh.blocks[it->second].add(r.nodes);
-            d_.element_ids[it->second].push_back(r.id);
+            d_.mesh.blocks[it->second].ids.push_back(r.id);
         }
         for (auto& [name, ids] : d_.mesh.node_sets) {
             std::sort(ids.begin(), ids.end());
@@ -660,9 +659,9 @@ void write_deck(const fs::path& path, const Deck& d, std::string_view heading) {
     for (int i = 0; i < d.mesh.node_count(); ++i)
         out << fmt::format("{}, {}, {}, {}\n", id_of_node(i), number(d.mesh.nodes[i].x()),
                            number(d.mesh.nodes[i].y()), number(d.mesh.nodes[i].z()));
-    int next_id = 1;
-    for (const auto& ids : d.element_ids)
-        for (int id : ids) next_id = std::max(next_id, id + 1);
+    long next_id = 1;
+    for (const auto& blk : d.mesh.blocks)
+        for (long id : blk.ids) next_id = std::max(next_id, id + 1);
     std::vector<std::string> elsets_written;
     for (std::size_t b = 0; b < d.mesh.blocks.size(); ++b) {
         const ElementBlock& blk = d.mesh.blocks[b];
@@ -672,7 +671,7 @@ void write_deck(const fs::path& path, const Deck& d, std::string_view heading) {
         for (int e = 0; e < blk.size(); ++e) {
             std::vector<int> c(blk.element(e).begin(), blk.element(e).end());
             if (blk.shape == ElementShape::Tet10) std::swap(c[8], c[9]);  // library -> C3D10 order
-            const int id = b < d.element_ids.size() && !d.element_ids[b].empty() ? d.element_ids[b][e] : next_id++;
+            const long id = blk.ids.empty() ? next_id++ : blk.id(e);
             out << id;
             for (std::size_t k = 0; k < c.size(); ++k) out << (k == 8 ? ",\n" : ", ") << id_of_node(c[k]);
             out << '\n';

@@ -70,12 +70,12 @@ struct Frequency {
 
 struct Deck {
     std::filesystem::path file;
-    /// Nodes in deck order; one block per (element type, section), part = the section's element set;
-    /// node sets under their upper-case deck names.
+    /// Nodes in deck order; one block per (element type, section), part = the section's element set,
+    /// the deck's element numbers as the block's ids (write_deck numbers a block without ids after
+    /// the largest); node sets under their upper-case deck names.
     Mesh mesh;
     std::vector<int> node_ids;                  // deck number of each mesh node
     std::vector<std::string> block_types;       // deck element type of each block ("C3D8I")
-    std::vector<std::vector<int>> element_ids;  // deck numbers of each block's elements
     std::vector<int> block_section;             // index into sections
     std::map<std::string, ElasticMaterial> materials;
     std::vector<Section> sections;

@@ -378,7 +378,18 @@ ExplicitSolver::~ExplicitSolver() = default;
 std::string ExplicitSolver::element_name(int g, int e) const {
     if (g < 0) return "no element";
     const auto& grp = *model_.groups()[g];
-    return fmt::format("part '{}' block {} {} element {}", grp.part, grp.block, grp.kind(), e);
+    if (grp.block < 0) return fmt::format("part '{}' {} {}", grp.part, grp.kind(), e + 1);  // point masses added one by one
+    return block_element_name(grp.block, e);
+}
+
+std::string ExplicitSolver::block_element_name(int b, int e) const {
+    // The element's number in the user's file (Gmsh tag, deck number; ElementBlock::ids), and the
+    // block when a part has several generated blocks (their numbers restart at 1 in each).
+    const Mesh& mesh = model_.mesh();
+    const ElementBlock& blk = mesh.blocks[b];
+    std::string s = fmt::format("part '{}' {} element {}", blk.part, to_string(blk.shape), blk.id(e));
+    if (blk.ids.empty() && mesh.blocks_of_part(blk.part).size() > 1) s += fmt::format(" of block {}", b);
+    return s;
 }
 
 void ExplicitSolver::initialize() {
@@ -721,7 +732,7 @@ void ExplicitSolver::compute_forces(bool compute_dt) {
         const GroupForceResult r = groups[g]->internal_forces(s_, compute_dt);
         element_cycles_ += groups[g]->size();
         if (r.bad_element >= 0)
-            unstable(fmt::format("{} is inverted or has a non-finite state", element_name(g, r.bad_element)));
+            unstable("an element inverted or its state became non-finite", g, r.bad_element);
         e_int_ += r.internal_energy;
         e_hg_ += r.hourglass_energy;
         part_int_[group_part_[g]] += r.internal_energy;
@@ -771,8 +782,10 @@ void ExplicitSolver::external_forces(double t) {
     }
 }
 
-void ExplicitSolver::unstable(const std::string& why) {
-    // Locate the node with the largest kinetic energy: where a numerical instability grows fastest.
+void ExplicitSolver::unstable(const std::string& why, int bad_group, int bad_element) {
+    // Where: the element found bad, else the element around the node with the largest kinetic
+    // energy (where a numerical instability grows fastest) that is compressed most.
+    const Mesh& mesh = model_.mesh();
     int worst = -1;
     double ew = -1.0;
     for (int i = 0; i < s_.node_count(); ++i) {
@@ -786,28 +799,64 @@ void ExplicitSolver::unstable(const std::string& why) {
             worst = i;
         }
     }
-    // The part and element around that node (its first element in the mesh), so that the message
-    // names the place a user can look at, not only a node number.
-    std::string around = "in no element";
-    const Mesh& mesh = model_.mesh();
-    for (int b = 0; worst >= 0 && b < static_cast<int>(mesh.blocks.size()) && around == "in no element"; ++b)
-        for (int e = 0; e < mesh.blocks[b].size(); ++e) {
-            const auto conn = mesh.blocks[b].element(e);
-            if (std::find(conn.begin(), conn.end(), worst) != conn.end()) {
-                around = fmt::format("in part '{}' ({} element {} of block {})", mesh.blocks[b].part,
-                                     to_string(mesh.blocks[b].shape), e, b);
-                break;
-            }
+    // Current over initial centre Jacobian of a solid (<= 0: inverted); 1 for other shapes.
+    const auto volume_ratio = [&](int b, int e) {
+        const ElementBlock& blk = mesh.blocks[b];
+        std::vector<Vec3> x, X;
+        for (int n : blk.element(e)) {
+            x.push_back(s_.x[n]);
+            X.push_back(s_.X[n]);
         }
-    const std::string where =
-        worst >= 0 ? fmt::format("node {} {} (reference position {:.4g}, {:.4g}, {:.4g})", worst, around, s_.X[worst].x(),
-                                 s_.X[worst].y(), s_.X[worst].z())
-                   : "no node";
+        const double j0 = centre_jacobian(blk.shape, X);
+        return j0 > 0.0 ? centre_jacobian(blk.shape, x) / j0 : 1.0;
+    };
+    int block = bad_group >= 0 ? model_.groups()[bad_group]->block : -1, element = bad_element;
+    if (block < 0) {
+        double least = std::numeric_limits<double>::infinity();
+        for (const auto& g : model_.groups())
+            if (g->block >= 0 && worst >= 0)
+                for (int e = 0; e < mesh.blocks[g->block].size(); ++e) {
+                    const auto conn = mesh.blocks[g->block].element(e);
+                    if (std::find(conn.begin(), conn.end(), worst) == conn.end()) continue;
+                    const double r = volume_ratio(g->block, e);
+                    if (!(r >= least)) {  // (NaN first)
+                        least = r;
+                        block = g->block;
+                        element = e;
+                    }
+                }
+    }
+    std::string place = "no element", cause;
+    const double ratio = block >= 0 ? volume_ratio(block, element) : 1.0;
+    if (block >= 0) {
+        Vec3 centre = Vec3::Zero();
+        for (int n : mesh.blocks[block].element(element)) centre += s_.X[n];
+        centre /= mesh.blocks[block].nodes_per_element();
+        place = fmt::format("{} (initially centred at {:.4g}, {:.4g}, {:.4g})", block_element_name(block, element),
+                            centre.x(), centre.y(), centre.z());
+    }
+    // Why, most likely: a fixed step above the critical one (Eq 2-27), else a deformation the mesh
+    // cannot follow: an inverted element, or elements collapsing faster than the step adapts.
+    const double dt_used = dt_half_ > 0.0 ? dt_half_ : (opt_.fixed_dt > 0 ? opt_.fixed_dt : opt_.dt_scale * dt_crit_);
+    const bool above = dt_used > dt_crit_ * (1.0 + 1e-9);
+    const char* too_large = "a load, prescribed motion or contact too large for the mesh";
+    if (above && opt_.fixed_dt > 0)
+        cause = fmt::format("the fixed time step {:.4g} s is above the critical step {:.4g} s of {} (Eq 2-27); lower it "
+                            "or use mass scaling", dt_used, dt_crit_, element_name(dt_group_, dt_element_));
+    else if (!(ratio > 0.0))
+        cause = fmt::format("the element inverted (its volume at the centre went through zero): {}", too_large);
+    else if (above)
+        cause = fmt::format("the critical step fell below the step in use ({:.4g} < {:.4g} s, {}): elements collapsing "
+                            "faster than the step adapts, {}", dt_crit_, dt_used, element_name(dt_group_, dt_element_),
+                            too_large);
+    else
+        cause = fmt::format("a deformation the mesh cannot follow (the element's volume is now {:.3g} x its initial "
+                            "one): {}", ratio, too_large);
     throw SolverError(fmt::format(
-        "explicit run '{}' unstable at step {}, t = {:.6g} s: {}. Largest kinetic energy at {}; smallest critical step "
-        "{:.4g} s in {}; step used {:.4g} s",
-        opt_.name, step_, t_, why, where, dt_crit_, element_name(dt_group_, dt_element_),
-        opt_.fixed_dt > 0 ? opt_.fixed_dt : opt_.dt_scale * dt_crit_));
+        "explicit run '{}' went unstable at t = {:.6g} s (cycle {}) in {}: {}. Likely cause: {}. Step used {:.4g} s, "
+        "critical step {:.4g} s ({}); largest kinetic energy at the node initially at {:.4g}, {:.4g}, {:.4g}",
+        opt_.name, t_, step_, place, why, cause, dt_used, dt_crit_, element_name(dt_group_, dt_element_),
+        worst >= 0 ? s_.X[worst].x() : 0.0, worst >= 0 ? s_.X[worst].y() : 0.0, worst >= 0 ? s_.X[worst].z() : 0.0));
 }
 
 void ExplicitSolver::record(bool force) {
@@ -1543,10 +1592,9 @@ RunSummary ExplicitSolver::run() {
         }
         input_scale_ = std::abs(e0_) + w_abs_ + std::abs(w_prov_);  // the energy put in (growth detector)
 
-        if (tot.bad >= 0) unstable(fmt::format("non-finite velocity at node {}", tot.bad));
+        if (tot.bad >= 0) unstable("a velocity became non-finite");
         if (tot.ke_plus + e_int_ + e_hg_ > opt_.energy_growth_factor * input_scale_ && input_scale_ > 0.0)
-            unstable(fmt::format("energy growth: kinetic + internal energy {:.4g} J exceeds {} x the energy put in "
-                                 "({:.4g} J)",
+            unstable(fmt::format("the kinetic + internal energy {:.4g} J exceeds {} x the energy put in ({:.4g} J)",
                                  tot.ke_plus + e_int_ + e_hg_, opt_.energy_growth_factor, input_scale_));
 
         summary_.min_dt = std::min(summary_.min_dt, dt_half_);
@@ -1599,7 +1647,9 @@ RunSummary ExplicitSolver::run() {
         summary_.controlling_part = g.part;
         summary_.controlling_kind = g.kind();
         summary_.controlling_block = g.block;
-        summary_.controlling_element = ctrl_element_;
+        // Its number as the user knows it (ElementBlock::id), as the messages name elements.
+        summary_.controlling_element =
+            static_cast<int>(g.block >= 0 ? model_.mesh().blocks[g.block].id(ctrl_element_) : ctrl_element_ + 1L);
         summary_.controlling_rule = g.time_step_rule(ctrl_element_);
     }
     // Timing table and contact interfaces (the final HDF5 below counts as output, measured first).

@@ -420,8 +420,11 @@ private:
     void restart_dumps();
     double choose_dt() const;
     void write_vtu(double t);
-    [[noreturn]] void unstable(const std::string& why);
+    /// Throws SolverError naming the time, cycle, element (bad_element of bad_group, else the one
+    /// around the node with the largest kinetic energy), its part and the likely cause.
+    [[noreturn]] void unstable(const std::string& why, int bad_group = -1, int bad_element = -1);
     std::string element_name(int group, int element) const;
+    std::string block_element_name(int block, int element) const;
 
     ExplicitModel& model_;
     ExplicitOptions opt_;

@@ -76,8 +76,9 @@ std::string gmsh_type_name(int type) {
 struct GmshEntity {
     int dim = 0, tag = 0;
     std::vector<int> types;                         // Gmsh element types
+    std::vector<std::vector<std::size_t>> elements; // per type: the element tags (ElementBlock::ids)
     std::vector<std::vector<std::size_t>> nodes;    // per type: the node tags of its elements, concatenated
-    template <class Io> void fields(Io& io) { io(dim, tag, types, nodes); }
+    template <class Io> void fields(Io& io) { io(dim, tag, types, elements, nodes); }
 };
 struct GmshGroup {
     int dim = 0, tag = 0;
@@ -104,9 +105,8 @@ GmshModelCopy copy_of_gmsh_model() {
     std::set<std::pair<int, int>> copied;
     auto copy_entity = [&](int dim, int tag) {
         if (!copied.emplace(dim, tag).second) return;
-        GmshEntity e{dim, tag, {}, {}};
-        std::vector<std::vector<std::size_t>> element_tags;
-        gmsh::model::mesh::getElements(e.types, element_tags, e.nodes, dim, tag);
+        GmshEntity e{dim, tag, {}, {}, {}};
+        gmsh::model::mesh::getElements(e.types, e.elements, e.nodes, dim, tag);
         for (int type : e.types)
             if (!shape_of_gmsh_type(type) &&
                 std::find(c.unsupported_types.begin(), c.unsupported_types.end(), type) == c.unsupported_types.end()) {
@@ -282,7 +282,7 @@ Mesh mesh_from_copy(const GmshModelCopy& model, const std::string& source) {
 
     // Element blocks keyed by (part, Gmsh type), in order of first appearance; connectivity kept
     // in Gmsh tags until the nodes are renumbered.
-    struct RawBlock { std::string part; ElementShape shape; std::vector<std::size_t> tags; };
+    struct RawBlock { std::string part; ElementShape shape; std::vector<std::size_t> tags; std::vector<long> ids; };
     std::vector<RawBlock> raw;
     std::map<std::pair<std::string, int>, std::size_t> block_index;
     std::map<std::string, std::vector<std::size_t>> raw_sets;
@@ -305,10 +305,14 @@ Mesh mesh_from_copy(const GmshModelCopy& model, const std::string& source) {
             auto it = block_index.find(key);
             if (it == block_index.end()) {
                 it = block_index.emplace(key, raw.size()).first;
-                raw.push_back({part, *shape, {}});
+                raw.push_back({part, *shape, {}, {}});
             }
             auto& dst = raw[it->second].tags;
             dst.insert(dst.end(), e.nodes[t].begin(), e.nodes[t].end());
+            if (t < e.elements.size()) {
+                auto& ids = raw[it->second].ids;
+                ids.insert(ids.end(), e.elements[t].begin(), e.elements[t].end());
+            }
         }
     };
 
@@ -344,9 +348,10 @@ Mesh mesh_from_copy(const GmshModelCopy& model, const std::string& source) {
         index.emplace(tag, mesh.add_node(Vec3(x[0], x[1], x[2])));
     }
     for (const auto& b : raw) {
-        ElementBlock block{b.part, b.shape, {}};
+        ElementBlock block{b.part, b.shape, {}, {}};
         block.connectivity.reserve(b.tags.size());
         for (std::size_t tag : b.tags) block.connectivity.push_back(index.at(tag));
+        if (b.ids.size() == static_cast<std::size_t>(block.size())) block.ids = b.ids;  // else numbered 1, 2, ...
         mesh.blocks.push_back(std::move(block));
     }
     for (const auto& [name, s] : raw_sets) {

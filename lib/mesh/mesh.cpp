@@ -70,8 +70,18 @@ void Mesh::translate(const Vec3& offset) {
 
 namespace {
 
-// Signed volume measure at the element centre (det J up to a positive factor), for the inverted-
-// element check. Only solids are checked.
+// Nodes and elements are numbered with int: a generator asked for more is refused before it
+// allocates anything (a 70000 x 70000 grid would overflow the node numbering).
+void require_int_count(double nodes, double elements, const std::string& what) {
+    constexpr double limit = std::numeric_limits<int>::max();
+    if (nodes > limit || elements > limit)
+        throw InputError(fmt::format("{} has {:.3g} nodes and {:.3g} elements; the library numbers both with 32-bit integers "
+                                     "(at most {})", what, nodes, elements, std::numeric_limits<int>::max()));
+    require_memory(nodes * sizeof(Vec3) + elements * 8 * sizeof(int), what);
+}
+
+}  // namespace
+
 double centre_jacobian(ElementShape shape, const std::vector<Vec3>& x) {
     switch (shape) {
         case ElementShape::Tet4:
@@ -87,18 +97,6 @@ double centre_jacobian(ElementShape shape, const std::vector<Vec3>& x) {
     }
 }
 
-// Nodes and elements are numbered with int: a generator asked for more is refused before it
-// allocates anything (a 70000 x 70000 grid would overflow the node numbering).
-void require_int_count(double nodes, double elements, const std::string& what) {
-    constexpr double limit = std::numeric_limits<int>::max();
-    if (nodes > limit || elements > limit)
-        throw InputError(fmt::format("{} has {:.3g} nodes and {:.3g} elements; the library numbers both with 32-bit integers "
-                                     "(at most {})", what, nodes, elements, std::numeric_limits<int>::max()));
-    require_memory(nodes * sizeof(Vec3) + elements * 8 * sizeof(int), what);
-}
-
-}  // namespace
-
 void validate(const Mesh& mesh) {
     for (int i = 0; i < mesh.node_count(); ++i)
         if (!mesh.nodes[i].allFinite()) throw InputError("node " + std::to_string(i) + " has a non-finite coordinate");
@@ -107,20 +105,23 @@ void validate(const Mesh& mesh) {
         if (block.connectivity.size() % block.nodes_per_element() != 0)
             throw InputError("block " + std::to_string(b) + " (part '" + block.part + "'): connectivity length is not a multiple of " +
                              std::to_string(block.nodes_per_element()));
+        if (!block.ids.empty() && static_cast<int>(block.ids.size()) != block.size())
+            throw InputError("block " + std::to_string(b) + " (part '" + block.part + "'): " + std::to_string(block.ids.size()) +
+                             " element numbers for " + std::to_string(block.size()) + " elements");
         for (int e = 0; e < block.size(); ++e) {
             auto conn = block.element(e);
             for (std::size_t k = 0; k < conn.size(); ++k) {
                 if (conn[k] < 0 || conn[k] >= mesh.node_count())
-                    throw InputError("part '" + block.part + "' element " + std::to_string(e) + " refers to node " +
+                    throw InputError("part '" + block.part + "' element " + std::to_string(block.id(e)) + " refers to node " +
                                      std::to_string(conn[k]) + ", which does not exist");
                 for (std::size_t j = 0; j < k; ++j)
                     if (conn[j] == conn[k])
-                        throw InputError("part '" + block.part + "' element " + std::to_string(e) + " repeats node " +
+                        throw InputError("part '" + block.part + "' element " + std::to_string(block.id(e)) + " repeats node " +
                                          std::to_string(conn[k]));
             }
             if (dimension(block.shape) == 3 && centre_jacobian(block.shape, mesh.element_coordinates(b, e)) <= 0.0)
                 throw InputError("part '" + block.part + "' " + std::string(to_string(block.shape)) + " element " +
-                                 std::to_string(e) + " is inverted (non-positive Jacobian at its centre)");
+                                 std::to_string(block.id(e)) + " is inverted (non-positive Jacobian at its centre)");
         }
     }
     for (const auto& [name, ids] : mesh.node_sets)

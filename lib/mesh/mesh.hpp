@@ -18,8 +18,13 @@ struct ElementBlock {
     std::string part;                // part name, e.g. "finger"
     ElementShape shape = ElementShape::Hex8;
     std::vector<int> connectivity;   // node_count(shape) node indices per element, 0-based
+    /// The element numbers of the file the block was read from (Gmsh element tags, deck element
+    /// numbers), one per element; empty for a generated block, whose elements are 1, 2, ... in
+    /// block order. Messages name an element by id() so that a user finds it in their own file.
+    std::vector<long> ids;
 
     int nodes_per_element() const { return node_count(shape); }
+    long id(int e) const { return ids.empty() ? e + 1L : ids[static_cast<std::size_t>(e)]; }
     int size() const { return static_cast<int>(connectivity.size()) / nodes_per_element(); }
     std::span<const int> element(int e) const {
         return {connectivity.data() + static_cast<std::size_t>(e) * nodes_per_element(),
@@ -58,6 +63,10 @@ struct Mesh {
         return ids;
     }
 };
+
+/// Signed volume measure of a solid at its centre (det J up to a positive factor, from the corner
+/// nodes `x` in the shape's order): <= 0 for an inverted element; 1 for shapes that are not solids.
+double centre_jacobian(ElementShape shape, const std::vector<Vec3>& x);
 
 /// Checks the mesh: node indices in range, no element repeating a node, solids with positive
 /// volume (Jacobian at the centre), no NaN coordinates. Throws InputError naming the block,

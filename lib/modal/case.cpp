@@ -67,6 +67,22 @@ std::string extremes(const Conditioning& cond, const AssembledSystem& sys, const
     return out;
 }
 
+// "; or the problem is ill-conditioned: part 'beam' (steel) has nu = 0.4999999999, ...": the parts
+// whose Poisson's ratio makes the bulk stiffness swamp the shear stiffness that the low modes need
+// (lambda / mu = 2 nu / (1 - 2 nu) above 1e6): their low eigenvalues sink into the round-off of the
+// largest K_ii / M_ii and look like rigid-body modes. Empty when no part is that close to 0.5.
+std::string nearly_incompressible(const ModalCase& c) {
+    std::string out;
+    for (const CasePart& p : c.parts) {
+        const double nu = p.material.poissons_ratio, ratio = 2 * nu / (1 - 2 * nu);
+        if (ratio > 1e6)
+            out += fmt::format("{} part '{}' ({}) has nu = {:.12g}: lambda / mu = {:.3g}, nearly incompressible, so its bulk "
+                               "stiffness swamps the shear stiffness of the low modes; use nu <= 0.49999",
+                               out.empty() ? "; or the problem is ill-conditioned:" : ";", p.name, p.material.name, nu, ratio);
+    }
+    return out;
+}
+
 }  // namespace
 
 namespace {
@@ -220,10 +236,12 @@ std::string run_modal_case(const ModalCase& c) {
     try {
         r = solve_modes(sys, c.options);
     } catch (const SolverError& e) {
-        throw SolverError(e.what() + extremes(cond, sys, mesh, c));
+        throw SolverError(e.what() + extremes(cond, sys, mesh, c) + nearly_incompressible(c));
     } catch (const InputError& e) {
-        if (cond.representable()) throw;
-        throw InputError(e.what() + extremes(cond, sys, mesh, c));
+        if (!cond.representable()) throw InputError(e.what() + extremes(cond, sys, mesh, c));
+        const std::string hint = nearly_incompressible(c);
+        if (hint.empty()) throw;
+        throw InputError(e.what() + hint);
     }
     if (c.shapes > c.options.modes)
         throw InputError(fmt::format("shapes = {} asks for more mode shapes than the {} modes computed", c.shapes, c.options.modes));
@@ -247,7 +265,6 @@ std::string export_case_deck(const ModalCase& c, const std::filesystem::path& pa
         for (int b : mesh.blocks_of_part(p.name)) {
             const std::string type = element_type(p, mesh.blocks[b]);
             d.block_types.push_back(type);
-            d.element_ids.emplace_back();
             d.block_section.push_back(static_cast<int>(d.sections.size()));
             d.mesh.blocks[b].part = p.name;
             std::string elset = fmt::format("{}_{}", p.name, b);  // a deck name: letters, digits, '_'

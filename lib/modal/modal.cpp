@@ -227,6 +227,14 @@ ModalResult solve_modes(const SpMat& K, const SpMat& M, const ModalOptions& o) {
         throw InputError(fmt::format("modal: the eigenvalues overflow double precision: {} (is a density far too small "
                                      "or a Young's modulus far too large for SI units?)", cond.describe()));
 
+    // A shift that dwarfs every K_ii / M_ii leaves K in the round-off of K - sigma M (at 1e10 x, that
+    // round-off is already 1e-6 of the highest eigenvalue): the shift is what is wrong, not the model.
+    if (std::abs(r.shift) > 1e10 * cond.lambda_max && cond.lambda_max > 0)
+        throw InputError(fmt::format("modal: shift_hz = {:g} Hz gives the shift sigma = {:.3g} rad^2/s^2, {:.3g} x the "
+                                     "largest K_ii / M_ii ({:.3g} rad^2/s^2, about the highest eigenvalue): K is lost in "
+                                     "the round-off of K - sigma M; use |shift_hz| below {:.3g} Hz",
+                                     o.shift_hz, r.shift, std::abs(r.shift) / cond.lambda_max, cond.lambda_max,
+                                     std::sqrt(cond.lambda_max) / (2 * std::numbers::pi)));
     if (o.shift_hz == 0.0 && o.admit_rigid_body_modes) r.shift = -1e-8 * cond.lambda_max;
 
     auto t0 = Clock::now();
@@ -307,8 +315,9 @@ ModalResult solve_modes(const SpMat& K, const SpMat& M, const ModalOptions& o) {
         const Eigen::VectorXd kphi = Ks * phi;
         // ||K phi|| normally; for a rigid-body mode (lambda below the shift's magnitude) K phi is
         // itself round-off, so the backward error relative to ||K||_1 ||phi|| is reported instead.
-        const double denom = std::abs(lambda) >= std::abs(r.shift) ? kphi.norm() : k_norm * phi.norm();
-        r.residuals(k) = (kphi - lambda * mphi).norm() / denom;
+        // (stableNorm: with a tiny modulus, E = 1e-200 Pa, the plain sum of squares underflows to 0/0.)
+        const double denom = std::abs(lambda) >= std::abs(r.shift) ? kphi.stableNorm() : k_norm * phi.stableNorm();
+        r.residuals(k) = (kphi - lambda * mphi).stableNorm() / denom;
         r.frequencies_hz(k) = (lambda < 0 ? -1.0 : 1.0) * std::sqrt(std::abs(lambda)) / (2 * std::numbers::pi);
     }
     return r;

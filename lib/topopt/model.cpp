@@ -185,9 +185,10 @@ Mesh crop_by_flags(const Mesh& mesh, const std::vector<char>& keep) {
     Mesh out;
     std::size_t e_global = 0;
     for (const auto& b : mesh.blocks) {
-        ElementBlock nb{b.part, b.shape, {}};
+        ElementBlock nb{b.part, b.shape, {}, {}};
         for (int e = 0; e < b.size(); ++e, ++e_global) {
             if (!keep[e_global]) continue;
+            nb.ids.push_back(b.id(e));  // the kept elements keep their numbers
             for (int node : b.element(e)) {
                 if (new_id[node] < 0) new_id[node] = -2;  // mark used; numbered below in old order
                 nb.connectivity.push_back(node);

@@ -74,7 +74,6 @@ deck::Deck make_deck(const Mesh& mesh, const std::string& type, const std::vecto
     for (auto& b : d.mesh.blocks) b.part = "EALL";
     for (std::size_t b = 0; b < d.mesh.blocks.size(); ++b) {
         d.block_types.push_back(type);
-        d.element_ids.emplace_back();
         d.block_section.push_back(0);
     }
     d.materials.emplace("STEEL", kSteel);

@@ -125,7 +125,8 @@ TEST(Deck, ReadsEveryKeyword) {
     const auto tet = d.mesh.blocks[0].element(0);
     EXPECT_EQ(d.node_ids[tet[8]], 10);
     EXPECT_EQ(d.node_ids[tet[9]], 9);
-    EXPECT_EQ(d.element_ids[1], std::vector<int>{2});
+    EXPECT_EQ(d.mesh.blocks[1].ids, std::vector<long>{2});
+    EXPECT_EQ(d.mesh.blocks[1].id(0), 2);  // the deck's number, not the position in the block
     EXPECT_EQ(d.mesh.node_set("BASE"), (std::vector<int>{10, 11, 12, 13}));
     EXPECT_EQ(d.mesh.node_set("CORNERS").size(), 6u);  // 1, 2 and the set BASE
     EXPECT_EQ(d.mesh.node_set("NALL").size(), 18u);  // the *INCLUDE inside the *NODE data continues it
@@ -232,7 +233,6 @@ TEST(Deck, FemModalRunsADeckAndWritesTheShapesAsked) {
     deck::Deck d;
     d.mesh = box_hex8(0.4, 0.05, 0.08, 6, 1, 2, "EALL");
     d.block_types = {"C3D8"};
-    d.element_ids = {{}};
     d.block_section = {0};
     d.materials.emplace("STEEL", ElasticMaterial::make("STEEL", 210e9, 0.3, 7800.0));
     d.sections.push_back({deck::Section::Solid, "EALL", "STEEL", 0});

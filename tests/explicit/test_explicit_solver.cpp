@@ -8,6 +8,7 @@
 #include <numbers>
 #include <random>
 
+#include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include "explicit_test_support.hpp"
@@ -286,11 +287,13 @@ TEST(ExplicitStability, StableAtPointNineCriticalAndDetectedAboveTwoOverOmegaMax
             s.run();
             ADD_FAILURE() << "a step above the stability limit ran 3000 steps";
         } catch (const SolverError& e) {
-            // The diagnosis names the time, the node and its part and element (issue 14 item 5).
+            // The diagnosis names the time and cycle, the element and its part, and the cause: the
+            // fixed step above the critical one (issue 14 item 5).
             const std::string msg = e.what();
-            EXPECT_NE(msg.find("unstable at step"), std::string::npos) << msg;
-            EXPECT_NE(msg.find(", t = "), std::string::npos) << msg;
-            EXPECT_NE(msg.find("in part 'cube' (hex8 element"), std::string::npos) << msg;
+            EXPECT_NE(msg.find("went unstable at t = "), std::string::npos) << msg;
+            EXPECT_NE(msg.find(fmt::format("(cycle {}) in part 'cube' hex8 element ", s.step())), std::string::npos) << msg;
+            EXPECT_NE(msg.find("Likely cause: the fixed time step"), std::string::npos) << msg;
+            EXPECT_NE(msg.find("is above the critical step"), std::string::npos) << msg;
         }
         EXPECT_LT(s.step(), 3000);
     }
@@ -302,8 +305,33 @@ TEST(ExplicitStability, StableAtPointNineCriticalAndDetectedAboveTwoOverOmegaMax
             ExplicitSolver s(*m, o);
             FAIL() << "fixed dt above critical accepted";
         } catch (const InputError& e) {
-            EXPECT_NE(std::string(e.what()).find("part 'cube' block 0 hex8 element"), std::string::npos) << e.what();
+            EXPECT_NE(std::string(e.what()).find("of part 'cube' hex8 element "), std::string::npos) << e.what();
         }
+    }
+}
+
+// An element crushed in one step (its top face thrown down at 50 km/s): the run stops with a
+// SolverError that names the element by the number the user's file gives it (ElementBlock::ids),
+// its part, the time and cycle, and the cause, an inverted element (issue 14 item 5).
+TEST(ExplicitStability, InvertedElementNamedByItsFileNumberWithTimeCycleAndCause) {
+    Mesh mesh = box_hex8(0.01, 0.01, 0.01, 1, 1, 2, "block");
+    mesh.blocks[0].ids = {101, 102};  // as a Gmsh file or a deck numbers them
+    ExplicitModel model(mesh);
+    model.add_hex8("block", kSteel);
+    model.set_initial_velocity([](const Vec3& x) { return Vec3(0, 0, x.z() > 0.0099 ? -5e4 : 0.0); });
+    ExplicitSolver s(model, quiet(1e-3));
+    try {
+        s.run();
+        FAIL() << "an element crushed in one step ran to the end";
+    } catch (const SolverError& e) {
+        const std::string msg = e.what();
+        EXPECT_NE(msg.find(fmt::format("went unstable at t = {:.6g} s (cycle {}) in part 'block' hex8 element 102 "
+                                       "(initially centred at 0.005, 0.005, 0.0075): an element inverted",
+                                       s.time(), s.step())),
+                  std::string::npos)
+            << msg;
+        EXPECT_NE(msg.find("Likely cause: the element inverted"), std::string::npos) << msg;
+        EXPECT_GE(s.step(), 1);
     }
 }
 

@@ -323,6 +323,13 @@ TEST(Modal, NumericalFailuresNameTheirCause) {
     EXPECT_NE(modal_error(K_1, M_tiny, o).find("the eigenvalues overflow double precision: stiffness diagonal from 1 to 9"),
               std::string::npos)
         << modal_error(K_1, M_tiny, o);
+    // A shift that dwarfs the largest K_ii / M_ii (9): K would be lost in the round-off of K - sigma M.
+    o.shift_hz = -1e10;
+    EXPECT_NE(modal_error(K, M, o).find("shift_hz = -1e+10 Hz gives the shift sigma = -3.95e+21 rad^2/s^2, 4.39e+20 x the "
+                                        "largest K_ii / M_ii (9 rad^2/s^2"),
+              std::string::npos)
+        << modal_error(K, M, o);
+    o.shift_hz = 0;
     const modal::Conditioning c(K, M);
     EXPECT_EQ(c.k_max / c.k_min, 9.0);
     EXPECT_EQ(c.dof_k_max, 2);
