@@ -153,7 +153,15 @@ void ContactInterface::evaluate(std::span<const Vec3> x, std::span<const Vec3> v
             }
             int best = -1, best_side = 0;
             Projection bp;
+            // Outside veto, two strengths. A face the node projects onto from in front vetoes any
+            // capture. A face the node is only beside (within the edge tolerance) and clearly in
+            // front of vetoes only a capture that is itself made beside its face: next to a convex
+            // edge of a coarse faceted rim, inside means behind both planes, so a node in front of one
+            // is outside. A node that projects squarely into a face it penetrates keeps that capture:
+            // near a concave edge (a dent the fingers press into a soft object) it may lie in front
+            // of the neighbour's extended plane while being inside the body.
             double nearest_front = std::numeric_limits<double>::infinity();
+            double nearest_front_beside = std::numeric_limits<double>::infinity();
             const double node_offset = P.slave->node_offset.empty() ? 0.0 : P.slave->node_offset[i];
             for (int s : candidates) {
                 const auto& seg = segs[s];
@@ -173,7 +181,13 @@ void ContactInterface::evaluate(std::span<const Vec3> x, std::span<const Vec3> v
                 }
                 pr.gap -= seg.offset + node_offset;
                 const double tiny = 1e-9 * P.size[s];
-                if (pr.gap > tiny && pr.tangential_offset <= tiny) nearest_front = std::min(nearest_front, pr.gap);
+                // In front: projecting inside the face (beyond round-off); or beside it within the edge
+                // tolerance a capture would allow, clearly in front of its plane (a clamped bilinear
+                // projection carries ~1e-7 x size of iteration error: two bars end to end).
+                if (pr.gap > tiny && pr.tangential_offset <= tiny)
+                    nearest_front = std::min(nearest_front, pr.gap);
+                else if (pr.gap > 1e-3 * P.size[s] && pr.tangential_offset <= opt_.edge_tolerance * P.size[s])
+                    nearest_front_beside = std::min(nearest_front_beside, pr.gap);
                 if (!(pr.gap < -tiny) || -pr.gap > P.depth[s] || pr.tangential_offset > opt_.edge_tolerance * P.size[s])
                     continue;
                 const bool kept = s == hist.segment;
@@ -183,7 +197,9 @@ void ContactInterface::evaluate(std::span<const Vec3> x, std::span<const Vec3> v
                     bp = pr;
                 }
             }
-            if (best >= 0 && nearest_front < -bp.gap) best = -1;
+            if (best >= 0 && (nearest_front < -bp.gap ||
+                              (bp.tangential_offset > 1e-9 * P.size[best] && nearest_front_beside < -bp.gap)))
+                best = -1;
             if (best < 0) {
                 hist = {};  // separated: the friction spring relaxes
                 continue;

@@ -430,6 +430,54 @@ TEST(ContactPenalty, NodeBesideAThickBlockIsNotCapturedByAFarFace) {
     }
 }
 
+// The same beside a convex vertical edge of the block (the faceted rim of rotating_finger_contact's
+// object): the node is 0.5 mm in front of the side face x = 0.1 and 1 mm beyond its edge y = 0, so it
+// projects onto neither side face from inside, only within their edge tolerance; 20 mm above the
+// bottom face it lies within that face's edge tolerance and depth. It is outside the block: no force.
+// (Before the veto counted faces the node is beside, within the edge tolerance, the bottom face took
+// it with 20 mm of penetration: the 160 N spikes of rotating_finger_contact on finer finger meshes.)
+TEST(ContactPenalty, NodeBesideAConvexEdgeIsNotCapturedByAFarFace) {
+    Mesh m = box_hex8(0.1, 0.1, 0.1, 1, 1, 1, "block");
+    Mesh probe = box_hex8(0.01, 0.01, 0.01, 1, 1, 1, "probe");
+    probe.translate(Vec3(0.1005, -0.011, 0.02));  // x-min face 0.5 mm outside x = 0.1; y-max face 1 mm below y = 0
+    m.append(probe);
+    ContactOptions o;
+    o.edge_tolerance = 0.05;
+    ContactInterface ci("probe beside edge", ContactSurface::from_part(m, "probe", kRubber),
+                        ContactSurface::rigid_part(m, "block", 0.05), o);
+    std::vector<Vec3> f(m.node_count(), Vec3::Zero());
+    ci.evaluate(m.nodes, {}, 0.0, 0.0, f);
+    EXPECT_TRUE(ci.contacts().empty());
+    for (const Vec3& fi : f) EXPECT_EQ(fi.norm(), 0.0);
+}
+
+// The other side of the veto: a dent (a finger pressed into a soft object) makes a concave edge, and
+// near it a node can be inside the body while in front of the neighbouring face's extended plane.
+// Two rigid top faces meet in a valley 20 mm deep at x = 0.1; the probe's bottom nodes lie 3.5 and
+// 1.5 mm short of the valley, 0.4-0.8 mm behind face A (projecting squarely into it) and 0.2-0.6 mm in
+// front of face B's extended plane, beside B within its edge tolerance. They are inside: A keeps them.
+// (When a face the node was only beside could veto any capture, these nodes went free.)
+TEST(ContactPenalty, NodeInADentIsKeptByTheFaceItPenetrates) {
+    Mesh m = box_hex8(0.2, 0.1, 0.1, 2, 1, 1, "block");
+    for (Vec3& x : m.nodes)
+        if (std::abs(x.x() - 0.1) < 1e-12 && std::abs(x.z() - 0.1) < 1e-12) x.z() -= 0.02;  // the valley
+    Mesh probe = box_hex8(0.002, 0.002, 0.002, 1, 1, 1, "probe");
+    probe.translate(Vec3(0.0965, 0.049, 0.0799));
+    m.append(probe);
+    ContactOptions o;
+    o.edge_tolerance = 0.05;
+    ContactInterface ci("probe in a dent", ContactSurface::from_part(m, "probe", kRubber),
+                        ContactSurface::rigid_part(m, "block", 0.05), o);
+    std::vector<Vec3> f(m.node_count(), Vec3::Zero());
+    ci.evaluate(m.nodes, {}, 0.0, 0.0, f);
+    ASSERT_EQ(ci.contacts().size(), 4u);  // the probe's four bottom nodes
+    for (const auto& c : ci.contacts()) {
+        EXPECT_LT(c.gap, -3e-4);
+        EXPECT_GT(c.normal.z(), 0.9);  // face A's outward normal (0.196, 0, 0.981)
+        EXPECT_GT(c.normal.x(), 0.0);  // A, not B (-0.196, 0, 0.981)
+    }
+}
+
 // --- friction ----------------------------------------------------------------------------------
 
 // A node pressed on a fixed rigid plate (constant penetration, f_n fixed) and pulled along x at
