@@ -320,6 +320,19 @@ Chicken table_5_3_chicken() {
     c.leg.joints = {j1, j2, Vec3(j3.x(), j3.y(), j3.z() - 15.0 * mm)};
     c.leg.limbs = {bar(a.leg.limbs[0].width, 30.0 * mm), bar(a.leg.limbs[1].width, 30.0 * mm)};
     c.leg.hinges = {a.leg.hinges[0]};
+    // Mesh quality [R] (the shackle model runs explicitly, so no feature may sit a fraction of a
+    // millimetre from another): Table 5-1's parts put on this bird's 30 mm deep limbs left three
+    // near-coincidences, each of which set the smallest element of the mesh in turn (scaled
+    // Jacobian 0.002 -> 0.014 -> 0.021 -> 0.068, smallest altitude 0.005 -> 0.46 mm at the study's
+    // 15 / 5 mm sizes):
+    //  - the cross brick (13 mm) was 0.01 mm wider than L2 (12.99 mm): 1 mm narrower than L2 now,
+    //    so its ends stay 1 mm inside the limb's sides and 2 mm from the groove's walls;
+    //  - the J2 knuckle (10 mm deep) sat inside 30 mm deep limbs, its faces 0.0x mm proud of the
+    //    thin L1 where they cross it: as deep as the limbs now (the hinge keeps its hole and ring);
+    //  - the two bricks' 5.93 and 5 mm thicknesses put their faces 0.47 mm apart: both 5.93 mm.
+    c.leg.hip[1].length = c.leg.limbs[1].width - 2.0 * mm;
+    c.leg.hinges[0].depth = 30.0 * mm;
+    c.leg.hip[1].thickness = c.leg.hip[0].thickness;
     return c;
 }
 
@@ -373,6 +386,7 @@ Mesh chicken_mesh(const Chicken& c, const MeshOptions& o) {
     const std::string who = "chicken_mesh";
     return with_model(who, [&] {
         set_mesh_options(o.leg_size, o.body_size, o.order, who);
+        gmsh::option::setNumber("Mesh.SecondOrderLinear", o.curved ? 0 : 1);
         const gmsh::vectorpair bird = bird_solid(c, o.half);
         const std::vector<int> volumes = volume_tags(bird);
         if (volumes.size() != 1)

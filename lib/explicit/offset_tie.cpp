@@ -1,0 +1,82 @@
+#include "explicit/offset_tie.hpp"
+
+#include <cmath>
+#include <limits>
+#include <map>
+#include <numbers>
+
+#include <fmt/format.h>
+
+#include "core/error.hpp"
+
+namespace fem {
+
+OffsetTie::OffsetTie(std::string name, std::vector<int> nodes, std::vector<int> anchors, OffsetTieOptions options)
+    : name_(std::move(name)), nodes_(std::move(nodes)), anchors_(std::move(anchors)), options_(options) {
+    if (nodes_.size() != anchors_.size() || nodes_.empty())
+        throw InputError(fmt::format("tie '{}': {} tied nodes and {} anchors (need one anchor per node, at least one)", name_,
+                                     nodes_.size(), anchors_.size()));
+    for (std::size_t i = 0; i < nodes_.size(); ++i)
+        if (nodes_[i] == anchors_[i]) throw InputError(fmt::format("tie '{}': node {} is tied to itself", name_, nodes_[i]));
+    if (!(options_.frequency > 0.0) || !(options_.damping_ratio >= 0.0))
+        throw InputError(fmt::format("tie '{}': frequency must be positive and the damping ratio non-negative", name_));
+}
+
+void OffsetTie::initialize(const NodalState& s) {
+    const int n = static_cast<int>(nodes_.size());
+    offset_.resize(n);
+    k_.resize(n);
+    c_.resize(n);
+    const double w = 2.0 * std::numbers::pi * options_.frequency;
+    std::map<int, std::pair<double, double>> at_anchor;  // anchor: (sum k, sum k |r|^2)
+    for (int i = 0; i < n; ++i) {
+        const int p = nodes_[i], a = anchors_[i];
+        if (p < 0 || a < 0 || p >= s.node_count() || a >= s.node_count())
+            throw InputError(fmt::format("tie '{}': node {} or anchor {} is not in the mesh", name_, p, a));
+        offset_[i] = s.X[p] - s.X[a];
+        if (offset_[i].norm() > 0.0 && s.rot_index[a] < 0)
+            throw InputError(fmt::format("tie '{}': anchor node {} carries no rotations (it must belong to a shell or beam part)", name_, a));
+        if (!(s.mass[p] > 0.0)) throw InputError(fmt::format("tie '{}': tied node {} has no mass", name_, p));
+        k_[i] = s.mass[p] * w * w;
+        c_[i] = 2.0 * options_.damping_ratio * s.mass[p] * w;
+        auto& [ks, kr] = at_anchor[a];
+        ks += k_[i];
+        kr += k_[i] * offset_[i].squaredNorm();
+    }
+    // The stable step of each tie, its anchor's share included: omega^2 <= k / m_p + sum k / m_a +
+    // sum k r^2 / I_a, and with a dashpot the damped central-difference bound 2 / omega (sqrt(1 +
+    // zeta^2) - zeta), zeta = c (1 / m_p + 1 / m_a + r^2 / I_a) / (2 omega). The dashpot's zeta is
+    // set on the tied node's mass; on a shell node's small (scaled) rotational inertia the same
+    // dashpot is heavily overdamped, and without this bound it was unstable (unit test).
+    dt_ = std::numeric_limits<double>::infinity();
+    for (int i = 0; i < n; ++i) {
+        const int p = nodes_[i], a = anchors_[i], ra = s.rot_index[a];
+        const auto& [ks, kr] = at_anchor[a];
+        double w2 = k_[i] / s.mass[p] + ks / s.mass[a];
+        double flex = 1.0 / s.mass[p] + 1.0 / s.mass[a];
+        if (ra >= 0) w2 += kr / s.inertia[ra], flex += offset_[i].squaredNorm() / s.inertia[ra];
+        const double wi = std::sqrt(w2), zeta = c_[i] * flex / (2.0 * wi);
+        dt_ = std::min(dt_, 2.0 / wi * (std::sqrt(1.0 + zeta * zeta) - zeta));
+    }
+}
+
+void OffsetTie::add_forces(double, const NodalState& s, std::vector<Vec3>& force, std::vector<Vec3>& moment) {
+    max_gap_ = 0.0;
+    total_force_.setZero();
+    for (std::size_t i = 0; i < nodes_.size(); ++i) {
+        const int p = nodes_[i], a = anchors_[i], ra = s.rot_index[a];
+        const Vec3 r = ra >= 0 ? Vec3(s.rotation[ra] * offset_[i]) : offset_[i];
+        const Vec3 w = ra >= 0 ? s.omega[ra] : Vec3::Zero();
+        const Vec3 gap = s.x[p] - s.x[a] - r;
+        const Vec3 f = -k_[i] * gap - c_[i] * (s.v[p] - s.v[a] - w.cross(r));
+        force[p] += f;
+        force[a] -= f;
+        if (ra >= 0) moment[ra] += r.cross(-f);
+        max_gap_ = std::max(max_gap_, gap.norm());
+        total_force_ += f;
+    }
+}
+
+double OffsetTie::stable_time_step(const NodalState&) const { return dt_ > 0.0 ? dt_ : std::numeric_limits<double>::infinity(); }
+
+}  // namespace fem
