@@ -876,7 +876,8 @@ int main(int argc, char** argv) {
             const double scaling = i + 3 < argc ? std::atof(argv[i + 3]) : kShackleMassScalingDt;
             return run_program("chicken_shackling --shackle", [&] {
                 const chicken::Chicken bird = chicken::table_5_3_chicken();
-                const ShackleRun r = run_shackle(bird, chicken::density_for_mass(bird), rotating, end, "", scaling);
+                const ShackleRun r = run_shackle(bird, chicken::density_for_mass(bird), rotating, end,
+                                                  fmt::format("shackle-{}.pvd", rotating ? "rotating" : "inverting"), scaling);
                 fmt::print("{}\n", r.summary.text());
                 auto to_mm = [](std::vector<double> v) {
                     for (double& x : v) x /= mm;
