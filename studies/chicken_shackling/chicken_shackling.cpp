@@ -41,7 +41,6 @@
 #include <cstring>
 #include <fmt/format.h>
 #include <iostream>
-#include <map>
 #include <memory>
 #include <numbers>
 #include <string>
@@ -64,6 +63,7 @@
 #include "io/table.hpp"
 #include "io/vtu.hpp"
 #include "mesh/chicken.hpp"
+#include "mesh/mesh_tools.hpp"
 #include "mesh/finger.hpp"
 #include "modal/modal.hpp"
 #include "multibody/lumped_bird.hpp"
@@ -335,25 +335,14 @@ Mesh shackle_mesh(const chicken::Chicken& bird, ShackleGeometry& g) {
     for (int k = 0; k <= 10; ++k) z_cols.push_back(-0.5 * kShackleWidth + kShackleWidth * k / 10.0);
     track_cols.insert(track_cols.end(), z_cols.begin(), z_cols.end());
     track_cols.push_back(0.5 * kTrackWidth);
-    std::map<std::pair<long, long>, int> at;  // (s, z) in um -> node
-    auto node = [&](double s, double z) {
-        const std::pair<long, long> key{std::lround(s * 1e6), std::lround(z * 1e6)};
-        if (auto it = at.find(key); it != at.end()) return it->second;
-        return at[key] = m.add_node(g.fixed_end - s * g.e + z * Vec3::UnitZ());
-    };
-    // Quads counter-clockwise about n: -e x z = n.
-    auto grid = [&](const std::vector<double>& rows, const std::vector<double>& cols, const std::string& part) {
-        ElementBlock b{part, ElementShape::Quad4, {}};
-        for (std::size_t i = 0; i + 1 < rows.size(); ++i)
-            for (std::size_t j = 0; j + 1 < cols.size(); ++j) {
-                const std::array<int, 4> q = {node(rows[i], cols[j]), node(rows[i + 1], cols[j]), node(rows[i + 1], cols[j + 1]), node(rows[i], cols[j + 1])};
-                b.add(q);
-            }
-        m.blocks.push_back(std::move(b));
-    };
-    grid(s_rows, z_cols, "shackle");
-    grid(track_rows, track_cols, "track");
-    m.node_sets["shackle_centre"] = {node(centre, 0.0)};
+    // Node (s, z) = fixed end - s e + z z-hat; quads counter-clockwise about n = -e x z-hat. The track
+    // shares the shackle's first three rows (welded: the same nodes).
+    Mesh plates = graded_parallelogram_quad4(g.fixed_end, -g.e, Vec3::UnitZ(), s_rows, z_cols, "shackle");
+    plates.append(graded_parallelogram_quad4(g.fixed_end, -g.e, Vec3::UnitZ(), track_rows, track_cols, "track"));
+    weld_coincident_nodes(plates, 1e-6);
+    const int offset = m.node_count();
+    m.append(plates);
+    m.node_sets["shackle_centre"] = {offset + nearest_node(plates, g.fixed_end - centre * g.e)};
     validate(m);
     return m;
 }
@@ -396,13 +385,8 @@ ShackleRun run_shackle(const chicken::Chicken& bird, double density, bool rotati
     }
     const std::vector<int>& paws = mesh.node_set("paw");
     std::vector<int> anchors;
-    for (int p : paws) {
-        const Vec3 foot = mesh.nodes[p] - (mesh.nodes[p] - g.fixed_end).dot(g.n) * g.n;  // projection on the plate
-        int best = -1;
-        double d = 1e9;
-        for (int a : shackle_nodes) if (const double e = (mesh.nodes[a] - foot).norm(); e < d) d = e, best = a;
-        anchors.push_back(best);
-    }
+    for (int p : paws)  // the nearest to the paw node's projection on the plate
+        anchors.push_back(nearest_node(mesh, mesh.nodes[p] - (mesh.nodes[p] - g.fixed_end).dot(g.n) * g.n, shackle_nodes));
     r.tie_count = static_cast<int>(paws.size());
     auto& tie = static_cast<OffsetTie&>(model.add_force_provider(std::make_unique<OffsetTie>("paw-shackle tie", paws, anchors)));
 
