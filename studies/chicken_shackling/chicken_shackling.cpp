@@ -121,9 +121,10 @@ constexpr double kDtScale = 0.8;
 // masses; only the path to it does). Without it the hinge knuckles' small tetrahedra set the step
 // (limb 1: 0.19..0.46 us, 1.3 million steps); the mass added is reported per run (runs.json). The
 // target is each element's own limit 2 / omega_e (tet_groups.hpp; before 2026-12-02 it was keyed on
-// Table 2-1 steps as 2.5 us, which scaled about as little): 2.5 us on the element limits added 11-35 %
-// of the limbs' mass and moved the relaxed points by up to 1.3 % (the kinetic-energy stop is
-// path-dependent at that level) for 23-40 % fewer steps.
+// Table 2-1 steps, as 2.5 us): 1 us adds 1.0 / 0.1 / 0.007 % of the limbs' mass, takes 13 / 18 / 0 %
+// of the steps of limbs 1 / 2 / 3 out and leaves the relaxed points within 2e-4 of the old keying;
+// 2.5 us added 11-35 % and moved them by up to 1.3 % (the kinetic-energy stop is path-dependent at
+// that level).
 constexpr double kRelaxationDt = 1.0e-6;
 
 /// k = sum F d / sum d^2: the least-squares line through the origin, F = k d.
