@@ -237,8 +237,9 @@ std::string RunSummary::text() const {
     s += fmt::format("  controlling element: part '{}' block {} {} element {}, critical dt {:.4g} s ({})\n",
                      controlling_part, controlling_block, controlling_kind, controlling_element, controlling_dt,
                      controlling_rule);
-    if (stability_factor < 1.0)
-        s += fmt::format("  measured stability limit of the solid elements: 2/omega_max = {:.4f} x Table 2-1 (steps scaled)\n",
+    if (stability_factor != 1.0)
+        s += fmt::format("  measured stability limit of the solid elements: 2/omega_max = {:.4f} x their smallest reference step "
+                         "(steps scaled)\n",
                          stability_factor);
     s += fmt::format("  time step: first {:.4g} s, min {:.4g} s, max {:.4g} s; {} steps to t = {:.6g} s\n", first_dt,
                      min_dt, max_dt, steps, end_time);
@@ -571,6 +572,22 @@ void ExplicitSolver::initialize() {
     next_restart_ = t_ + opt_.restart_interval;
 }
 
+namespace {
+// Hands the measured stability factor r to the solid groups (solid[gi] != 0). Groups that can
+// apply r themselves do so before their stiffness-damping reduction (set_stability_factor;
+// tetrahedra, whose reference steps are element bounds, take r > 1 too): marked solid[gi] = 2.
+// For the others the solver multiplies their step by r, at most 1 (dt_factor): their Table 2-1
+// steps are not bounds, and a factor above 1 on them is backed by nothing once the mesh deforms.
+void apply_stability_factor(std::vector<std::unique_ptr<ElementGroup>>& groups, double r, std::vector<char>& solid,
+                            std::vector<double>& dt_factor) {
+    for (std::size_t gi = 0; gi < groups.size(); ++gi)  // (also resets a factor left by an earlier solver)
+        if (solid[gi]) {
+            solid[gi] = groups[gi]->set_stability_factor(r) ? 2 : 1;
+            dt_factor[gi] = solid[gi] == 2 ? 1.0 : std::min(1.0, r);
+        }
+}
+}  // namespace
+
 void ExplicitSolver::start_fresh(double solid_table_dt) {
     const int n = s_.node_count(), nr = s_.rotational_count();
     auto& groups = model_.groups();
@@ -578,17 +595,14 @@ void ExplicitSolver::start_fresh(double solid_table_dt) {
     // One stability factor for all solid groups (hexahedra and tetrahedra alike): the measured
     // omega_max is that of the assembled solid model (shared nodes couple the groups' frequencies, so
     // only the assembled measurement is exact; per-group measurements are bounds only with each
-    // group's own masses, free-free), and r = (2/omega_max) / (smallest Table 2-1 step of the solid
+    // group's own masses, free-free), and r = (2/omega_max) / (smallest reference step of the solid
     // elements) makes the smallest scaled step exactly 2/omega_max at rest. Beams and point masses
-    // keep their own steps. Groups that can apply r themselves do so before their stiffness-damping
-    // reduction (set_stability_factor); for the others the solver multiplies their step.
+    // keep their own steps.
     if (opt_.hex_stability_check) {
         omega_max_ = measure_omega_max();
-        if (omega_max_ > 0.0 && std::isfinite(solid_table_dt))
-            stability_factor_ = std::min(1.0, (2.0 / omega_max_) / solid_table_dt);
+        if (omega_max_ > 0.0 && std::isfinite(solid_table_dt)) stability_factor_ = (2.0 / omega_max_) / solid_table_dt;
     }
-    for (std::size_t gi = 0; gi < groups.size(); ++gi)  // (also resets a factor left by an earlier solver)
-        if (solid_[gi] && !groups[gi]->set_stability_factor(stability_factor_)) dt_factor_[gi] = stability_factor_;
+    apply_stability_factor(groups, stability_factor_, solid_, dt_factor_);
     compute_forces(true);
     summary_.stability_factor = stability_factor_;
     if (opt_.fixed_dt > 0.0 && opt_.fixed_dt > dt_crit_ && !opt_.allow_unstable_fixed_dt)
@@ -754,7 +768,7 @@ void ExplicitSolver::compute_forces(bool compute_dt) {
                                          opt_.name));
         dt_crit_ = dt;
         // Before the stability factor (the summary's controlling step), whoever applied it.
-        dt_crit_unscaled_ = solid_[dg] ? dt / stability_factor_ : dt;
+        dt_crit_unscaled_ = solid_[dg] == 2 ? dt / stability_factor_ : solid_[dg] ? dt / dt_factor_[dg] : dt;
         dt_group_ = dg;
         dt_element_ = de;
     }
@@ -1255,8 +1269,7 @@ void ExplicitSolver::restore(const std::filesystem::path& path) {
     }
     // The measured stability factor carries over (the start-up measurement is not repeated).
     auto& groups = model_.groups();
-    for (std::size_t gi = 0; gi < groups.size(); ++gi)
-        if (solid_[gi] && !groups[gi]->set_stability_factor(stability_factor_)) dt_factor_[gi] = stability_factor_;
+    apply_stability_factor(groups, stability_factor_, solid_, dt_factor_);
     summary_.stability_factor = stability_factor_;
     max_vm_.clear();
     const auto vm_parts = split_lines(r.attribute_string("/", "max_vm_parts"));

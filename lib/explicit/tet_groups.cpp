@@ -68,7 +68,8 @@ TetGroup<N, Q>::TetGroup(const Mesh& mesh, int block, const ElasticMaterial& mat
     packed_.resize((n + hex8::kLanes - 1) / hex8::kLanes);
     for (int k = 0; k < static_cast<int>(packed_.size()) * hex8::kLanes; ++k)
         tet::pack_lane(tet::pack(refs_[order_[std::min(k, n - 1)]]), k % hex8::kLanes, packed_[k / hex8::kLanes]);
-    sqrt_mass_scale_.assign(n, 1.0);
+    step_scale_.resize(n);
+    for (int k = 0; k < n; ++k) step_scale_[k] = element_ratio_[order_[k]];
     von_mises_sq_.assign(n, 0.0);
     dt_wave_speed_ = cfl::wave_speed(shape, material_);
     colouring_ = par::ChunkColouring::build(kconn_, mesh.node_count(), kChunk);
@@ -82,9 +83,16 @@ TetGroup<N, Q>::TetGroup(const Mesh& mesh, int block, const ElasticMaterial& mat
 
 template <int N, int Q>
 bool TetGroup<N, Q>::set_stability_factor(double r) {
-    if (!(r > 0.0 && r <= 1.0)) throw InputError(fmt::format("part '{}': stability factor {} not in (0, 1]", part, r));
+    // Any positive factor: the reference steps are element bounds, which the assembled limit exceeds
+    // (r >= 1 when these elements control; tet_groups.hpp).
+    if (!(r > 0.0 && std::isfinite(r))) throw InputError(fmt::format("part '{}': stability factor {} not positive", part, r));
     factor_ = r;
     return true;
+}
+
+template <int N, int Q>
+std::string TetGroup<N, Q>::time_step_rule(int e) const {
+    return fmt::format("element limit 2/omega_e = {:.3f} x Table 2-1 altitude, on the current altitude", element_ratio_.at(e));
 }
 
 template <int N, int Q>
@@ -119,7 +127,7 @@ double TetGroup<N, Q>::mass() const {
 template <int N, int Q>
 std::vector<double> TetGroup<N, Q>::reference_time_steps() const {
     std::vector<double> dt(table_dt_.size());
-    for (std::size_t e = 0; e < dt.size(); ++e) dt[e] = table_dt_[e];  // unscaled
+    for (std::size_t e = 0; e < dt.size(); ++e) dt[e] = element_ratio_[e] * table_dt_[e];  // 2 / omega_e, unscaled
     return dt;
 }
 
@@ -127,7 +135,7 @@ template <int N, int Q>
 void TetGroup<N, Q>::set_mass_scaling(std::vector<double> factor) {
     if (static_cast<int>(factor.size()) != size()) throw InputError("mass scaling: one factor per element needed");
     mass_scale_ = std::move(factor);
-    for (int k = 0; k < size(); ++k) sqrt_mass_scale_[k] = std::sqrt(mass_scale_[order_[k]]);
+    for (int k = 0; k < size(); ++k) step_scale_[k] = element_ratio_[order_[k]] * std::sqrt(mass_scale_[order_[k]]);
 }
 
 template <int N, int Q>
@@ -210,9 +218,10 @@ GroupForceResult TetGroup<N, Q>::internal_forces(NodalState& s, bool compute_dt)
                 von_mises_sq_[k] = r.von_mises_sq[l];
                 p.vm_sq = std::max(p.vm_sq, r.von_mises_sq[l]);
                 if (compute_dt) {
-                    // The measured stability factor on Table 2-1 (tet_groups.hpp), mass scaling, then
-                    // the stiffness-damping reduction dt <= (2/omega)(sqrt(1 + xi^2) - xi), xi = beta omega/2.
-                    double dt = factor_ * dt_block[l] * sqrt_mass_scale_[k];
+                    // The element's own limit carried by its Table 2-1 step, mass scaling, the
+                    // measured factor (tet_groups.hpp), then the stiffness-damping reduction
+                    // dt <= (2/omega)(sqrt(1 + xi^2) - xi), xi = beta omega/2.
+                    double dt = factor_ * dt_block[l] * step_scale_[k];
                     if (beta_ > 0.0) {
                         const double xi = beta_ / dt;
                         dt *= std::sqrt(1.0 + xi * xi) - xi;

@@ -3,22 +3,25 @@
 // tetrahedra, element/tet_explicit.hpp), for the Gmsh finger meshes of thesis Cases C and D.
 //
 // Time step. Table 2-1 gives the tetrahedron the minimum altitude over the dilatational wave
-// speed. That is not a stability bound for the tet10 with HRZ masses (its step is set by the corner
-// sub-tetrahedra, about half the size): the Table 2-1 step over the exact limit is 2.78 on a
-// structured block and 1.55 on a Gmsh finger mesh (tests/explicit/test_tet_explicit.cpp). The
-// solver therefore measures omega_max of all its solid groups together once at the start (Lanczos,
-// ExplicitSolver, the same code for hexahedra and tetrahedra) and hands each group the factor r on
-// its Table 2-1 steps (set_stability_factor). Every cycle the group returns r x
-// fem::cfl::critical_time_step(current nodes, with the bulk-viscosity Q term): the Table 2-1 rule
-// follows the deformation (altitudes shrink in compression), the measured factor makes it a bound
-// at rest. Stiffness damping beta lowers it as for the hexahedron: dt <= (2 / omega)(sqrt(1 + xi^2)
-// - xi), xi = beta omega / 2, applied after r. Selective mass scaling multiplies an element's step
-// by sqrt(density factor) as for the hexahedron.
-// The element bound (each element's own largest frequency omega_e, its 3N x 3N linear stiffness
-// against its lumped masses, dense eigensolver; omega_max(assembled) <= max_e omega_e, Irons;
-// Hughes Sec 9.1.5) is kept as the fallback when the Lanczos measurement does not converge
-// (element_omega_bound): guaranteed but pessimistic on unstructured meshes (0.33 x the exact limit
-// for tet4, 0.47 for tet10 on the Gmsh finger).
+// speed: the tet4's rule, not a bound for the tet10, whose highest mode lives on the node spacing
+// (half an edge). Each element alone (its 30 x 30 linear stiffness against its HRZ masses, dense
+// eigen-solve) has 2 / omega_e = 0.26..0.34 x its Table 2-1 step on every shape tried, regular to
+// sliver and needle, nu 0.3..0.49 (tests/explicit/test_tet_explicit.cpp); other lumpings do not help
+// (corner masses 1/32, 1/24, 1/20, 1/10 of the element move it by -18..+6 %): the lumping is not
+// the cause. So the group's reference step for each element is its own limit 2 / omega_e (the
+// element bound: omega_max of the assembled lumped-mass system <= max_e omega_e, Irons; Hughes Sec
+// 9.1.5), and selective mass scaling, which lifts every element whose reference step is below its
+// target, lifts exactly the elements that set the limit: a mass_scaling_dt of a tet10 model is a
+// guaranteed step (keyed on Table 2-1 steps it gave about 0.37 x the target). Every cycle the
+// element's step follows its deformation as its Table 2-1 step does (altitudes shrink in
+// compression, the bulk-viscosity Q term): r x (2 / omega_e) x T_e(current) / T_e(reference). The
+// solver measures omega_max of all its solid groups together once at the start (Lanczos,
+// ExplicitSolver) and hands each group the factor r = (2 / omega_max) / (smallest reference step);
+// r >= 1 when tetrahedra control (the assembled limit exceeds the element bound: 1.6 on the Table 5-3
+// bird, 2.1 on a Gmsh finger), so the step at rest is exactly 2 / omega_max (before the 0.9 of Eq
+// 2-27). Stiffness damping beta lowers it as for the hexahedron: dt <= (2 / omega)(sqrt(1 + xi^2) -
+// xi), xi = beta omega / 2, applied after r. The element bound alone is the fallback when the
+// Lanczos measurement does not converge (element_omega_bound).
 //
 // Usage (a finger meshed with Gmsh in tet10, part "finger"):
 //   ExplicitModel model(mesh);
@@ -70,6 +73,7 @@ public:
     const std::array<double, N>& lumped_mass(int e) const { return mass_[e]; }
     /// The factor on the Table 2-1 steps in use (set by the solver's measurement; 1 before).
     double stability_factor() const { return factor_; }
+    std::string time_step_rule(int e) const override;
     /// r_e = (2 / omega_e) / Table 2-1 step of the reference element (the element bound).
     double element_stability_ratio(int e) const { return element_ratio_[e]; }
     /// Number of colours of the element chunks (barriers per force evaluation on several threads).
@@ -100,7 +104,7 @@ private:
     // The kernel's reference data in kernel order, blocks of kLanes elements; the lanes of the last
     // block past the end repeat the last element.
     std::vector<tet::TetPackedBlock<Q>> packed_;
-    std::vector<double> sqrt_mass_scale_;      // kernel order
+    std::vector<double> step_scale_;           // kernel order: element_ratio_ x sqrt(mass_scale_)
     std::vector<double> von_mises_sq_;         // kernel order (sqrt on output)
     double dt_wave_speed_ = 0.0;               // Table 2-1 dilatational wave speed
     par::ChunkColouring colouring_;

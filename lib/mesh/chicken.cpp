@@ -12,6 +12,7 @@
 #include "core/error.hpp"
 #include "core/units.hpp"
 #include "mesh/gmsh.hpp"
+#include "mesh/mesh_tools.hpp"
 
 namespace fem::chicken {
 namespace {
@@ -234,15 +235,10 @@ std::vector<int> nodes_on_bore(const Mesh& m, const Vec3& p, double r, double ha
     });
 }
 
-int nearest_node(const Mesh& m, const Vec3& p, double tol, const std::string& what) {
-    int best = -1;
-    double d = std::numeric_limits<double>::infinity();
-    for (int i = 0; i < m.node_count(); ++i)
-        if (const double e = (m.nodes[i] - p).norm(); e < d) {
-            d = e;
-            best = i;
-        }
-    if (best < 0 || d > tol)
+int node_at(const Mesh& m, const Vec3& p, double tol, const std::string& what) {
+    const int best = nearest_node(m, p);
+    const double d = (m.nodes[best] - p).norm();
+    if (d > tol)
         throw SolverError(fmt::format("chicken_mesh: no node at the {} ({:.3g} mm away)", what, d / mm));
     return best;
 }
@@ -460,8 +456,8 @@ Mesh chicken_mesh(const Chicken& c, const MeshOptions& o) {
         validate(m);
 
         const double tol = 1e-6;
-        m.node_sets["body_center"] = {nearest_node(m, Vec3(0, 0, 0), tol, "body centre")};
-        m.node_sets["head"] = {nearest_node(m, h, tol, "head centre")};
+        m.node_sets["body_center"] = {node_at(m, Vec3(0, 0, 0), tol, "body centre")};
+        m.node_sets["head"] = {node_at(m, h, tol, "head centre")};
         if (o.half) m.node_sets["symmetry"] = m.select_nodes([&](const Vec3& x) { return std::abs(x.z()) < tol; });
         const Leg& leg = c.leg;
         const double angle = leg.limb_angle(0), reach = 0.5 * std::hypot(leg.limbs[0].width, std::max(leg.limbs[0].depth_lower, leg.limbs[0].depth_upper)) + tol;

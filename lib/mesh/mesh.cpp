@@ -1,4 +1,5 @@
 #include "mesh/mesh.hpp"
+#include "mesh/mesh_tools.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -292,19 +293,10 @@ Mesh rectangle_quads(double lx, double ly, int nx, int ny, ElementShape shape, s
 Mesh parallelogram_quad4(const Vec3& centre, const Vec3& u, const Vec3& v, int nu, int nv, std::string part) {
     if (nu < 1 || nv < 1 || !(u.cross(v).norm() > 0.0))
         throw InputError("parallelogram_quad4 '" + part + "': needs nu, nv >= 1 and non-parallel u, v");
-    Mesh m;
-    for (int j = 0; j <= nv; ++j)
-        for (int i = 0; i <= nu; ++i)
-            m.add_node(centre + (static_cast<double>(i) / nu - 0.5) * u + (static_cast<double>(j) / nv - 0.5) * v);
-    ElementBlock b{std::move(part), ElementShape::Quad4, {}};
-    for (int j = 0; j < nv; ++j)
-        for (int i = 0; i < nu; ++i) {
-            const int a = j * (nu + 1) + i;
-            const int e[4] = {a, a + 1, a + nu + 2, a + nu + 1};
-            b.add(e);
-        }
-    m.blocks.push_back(std::move(b));
-    return m;
+    std::vector<double> a(nu + 1), b(nv + 1);
+    for (int i = 0; i <= nu; ++i) a[i] = static_cast<double>(i) / nu - 0.5;
+    for (int j = 0; j <= nv; ++j) b[j] = static_cast<double>(j) / nv - 0.5;
+    return graded_parallelogram_quad4(centre, u, v, a, b, std::move(part));
 }
 
 Mesh line_beam2(const Vec3& a, const Vec3& b, int n, std::string part) {

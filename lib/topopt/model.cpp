@@ -238,15 +238,4 @@ std::vector<int> boundary_nodes(const Mesh& mesh) {
     return ids;
 }
 
-int nearest_node(const Mesh& mesh, const Vec3& p) {
-    if (mesh.nodes.empty()) throw InputError("nearest_node: the mesh has no nodes");
-    int best = 0;
-    double d = std::numeric_limits<double>::infinity();
-    for (int i = 0; i < mesh.node_count(); ++i) {
-        const double di = (mesh.nodes[i] - p).squaredNorm();
-        if (di < d) d = di, best = i;
-    }
-    return best;
-}
-
 }  // namespace fem::topopt

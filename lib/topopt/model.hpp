@@ -16,6 +16,7 @@
 #include "core/types.hpp"
 #include "material/elastic.hpp"
 #include "mesh/mesh.hpp"
+#include "mesh/mesh_tools.hpp"  // nearest_node
 
 namespace fem::topopt {
 
@@ -111,8 +112,6 @@ Mesh crop_by_flags(const Mesh& mesh, const std::vector<char>& keep_element);
 /// mid-side nodes of Quad8 included.
 std::vector<int> boundary_nodes(const Mesh& mesh);
 
-/// The node nearest to `p`.
-int nearest_node(const Mesh& mesh, const Vec3& p);
 
 /// Element centroids of all blocks, in block order (average of the corner nodes).
 std::vector<Vec3> element_centroids(const Mesh& mesh);

@@ -1,0 +1,86 @@
+#include "mesh/mesh_tools.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <ranges>
+
+#include <fmt/format.h>
+
+#include "core/error.hpp"
+
+namespace fem {
+
+Mesh graded_parallelogram_quad4(const Vec3& origin, const Vec3& u, const Vec3& v, std::span<const double> a,
+                                std::span<const double> b, std::string part) {
+    auto increasing = [](std::span<const double> x) {
+        if (x.size() < 2) return false;
+        for (std::size_t i = 1; i < x.size(); ++i)
+            if (!(x[i] > x[i - 1])) return false;
+        return true;
+    };
+    if (!increasing(a) || !increasing(b) || !(u.cross(v).norm() > 0.0))
+        throw InputError(fmt::format("quad4 grid '{}': needs at least two strictly increasing row and column coordinates "
+                                     "and non-parallel u, v",
+                                     part));
+    const int na = static_cast<int>(a.size()), nb = static_cast<int>(b.size());
+    Mesh m;
+    for (int j = 0; j < nb; ++j)
+        for (int i = 0; i < na; ++i) m.add_node(origin + a[i] * u + b[j] * v);
+    ElementBlock blk{std::move(part), ElementShape::Quad4, {}};
+    for (int j = 0; j + 1 < nb; ++j)
+        for (int i = 0; i + 1 < na; ++i) {
+            const int n = j * na + i;
+            const int e[4] = {n, n + 1, n + na + 1, n + na};
+            blk.add(e);
+        }
+    m.blocks.push_back(std::move(blk));
+    return m;
+}
+
+int weld_coincident_nodes(Mesh& mesh, double tol) {
+    if (!(tol > 0.0)) throw InputError(fmt::format("weld_coincident_nodes: tolerance {} must be positive", tol));
+    std::map<std::array<long long, 3>, int> at;  // rounded coordinates -> new node number
+    std::vector<int> to(mesh.node_count());
+    std::vector<Vec3> kept;
+    for (int i = 0; i < mesh.node_count(); ++i) {
+        const Vec3& x = mesh.nodes[i];
+        const std::array<long long, 3> key = {std::llround(x.x() / tol), std::llround(x.y() / tol), std::llround(x.z() / tol)};
+        const auto [it, inserted] = at.try_emplace(key, static_cast<int>(kept.size()));
+        if (inserted) kept.push_back(x);
+        to[i] = it->second;
+    }
+    const int removed = mesh.node_count() - static_cast<int>(kept.size());
+    mesh.nodes = std::move(kept);
+    for (auto& b : mesh.blocks)
+        for (int& n : b.connectivity) n = to[n];
+    for (auto& [name, ids] : mesh.node_sets) {
+        std::vector<int> out;
+        for (int n : ids)
+            if (std::find(out.begin(), out.end(), to[n]) == out.end()) out.push_back(to[n]);
+        ids = std::move(out);
+    }
+    return removed;
+}
+
+namespace {
+template <class Nodes>
+int nearest_of(const Mesh& mesh, const Vec3& p, const Nodes& nodes) {
+    int best = -1;
+    double d = std::numeric_limits<double>::infinity();
+    for (const int i : nodes)
+        if (const double di = (mesh.nodes.at(i) - p).squaredNorm(); di < d) d = di, best = i;
+    if (best < 0) throw InputError("nearest_node: no node to choose from");
+    return best;
+}
+}  // namespace
+
+int nearest_node(const Mesh& mesh, const Vec3& p, std::span<const int> candidates) {
+    return nearest_of(mesh, p, candidates);
+}
+
+int nearest_node(const Mesh& mesh, const Vec3& p) { return nearest_of(mesh, p, std::views::iota(0, mesh.node_count())); }
+
+}  // namespace fem
