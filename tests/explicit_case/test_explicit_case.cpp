@@ -233,8 +233,8 @@ void expect_same_scene(const hand::Scene& a, const hand::Scene& b) {
     }
     EXPECT_EQ(a.gravity, b.gravity);
     expect_same_curve(a.gravity_curve, b.gravity_curve, "gravity");
-    EXPECT_EQ(std::tie(a.symmetry, a.damping_frame, a.fingers_start_spinning, a.drum_segments),
-              std::tie(b.symmetry, b.damping_frame, b.fingers_start_spinning, b.drum_segments));
+    EXPECT_EQ(std::tie(a.symmetry, a.mirror_contact, a.damping_frame, a.fingers_start_spinning, a.drum_segments),
+              std::tie(b.symmetry, b.mirror_contact, b.damping_frame, b.fingers_start_spinning, b.drum_segments));
 }
 
 // The built models: meshes, masses, pairs, rigid parts, and the first ~20 cycles bit for bit.
