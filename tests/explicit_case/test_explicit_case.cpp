@@ -448,6 +448,8 @@ TEST(ExplicitCase, ReaderRefusesWithFileLineAndKey) {
     EXPECT_NE(refused(base + "[[contact]]\nslave = \"b\"\nmaster = \"flor\"\n").find("master: 'flor' is not a part or rigid part"), std::string::npos);
     EXPECT_NE(refused(base + "[gravity]\ng = [0.0, nan, 0.0]\n").find("g[1]: must be a finite number"), std::string::npos);
     EXPECT_NE(refused(base + "[[boundary]]\nset = \"x0-b\"\nfix = [\"x\"]\nvelocity = [1.0, 0.0, 0.0]\n").find("give exactly one of fix"), std::string::npos);
+    const std::string mirror = base + "[hand]\nfingers = \"table-4-1\"\nmaterial = \"m\"\nsymmetry = false\nmirror_contact = true\n";
+    EXPECT_NE(refused(mirror).find("mirror_contact: needs symmetry = true"), std::string::npos) << refused(mirror);
 }
 
 }  // namespace
