@@ -298,7 +298,7 @@ hand::HandTurn read_turn(const TomlTable& t) {
 
 hand::Scene read_hand(const TomlTable& t, const std::map<std::string, ElasticMaterial>& materials) {
     t.allow({"fingers", "finger", "drum", "turn", "material", "section", "layer_length", "semi_major", "semi_minor", "theta_sign",
-             "roll_sign", "damping_frame", "fingers_start_spinning", "symmetry"});
+             "roll_sign", "damping_frame", "fingers_start_spinning", "symmetry", "mirror_contact"});
     hand::Scene h;
     hand::HandSpec& s = h.hand;
     if (t.has("fingers") == !t.tables("finger").empty())
@@ -327,6 +327,8 @@ hand::Scene read_hand(const TomlTable& t, const std::map<std::string, ElasticMat
                                                                                               : hand::DampingFrame::absolute;
     h.fingers_start_spinning = t.boolean_or("fingers_start_spinning", true);
     h.symmetry = t.boolean_or("symmetry", true);
+    h.mirror_contact = t.boolean_or("mirror_contact", false);
+    if (h.mirror_contact && !h.symmetry) t.fail("mirror_contact", "needs symmetry = true (the mirror images are across the symmetry plane)");
     if (const auto d = t.optional_table("drum")) {
         d->allow({"centre", "levels", "omega", "omega_curve", "omega_steps", "initial_angle_deg", "segments"});
         s.drum.centre = vec3_or(*d, "centre", Vec3::Zero());

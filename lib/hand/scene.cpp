@@ -67,7 +67,45 @@ Scene seen_from(Scene s, double t0) {
     return s;
 }
 
+namespace {
+// Scene::mirror_contact: the symmetry plane of the half objects as a frictionless rigid wall that
+// keeps the fingers on their side, covering the hand's reach about the drum axis (a hand turned
+// about z, Sec 4.4, stays within it).
+void add_mirror_wall(Scene& s) {
+    const auto half = std::find_if(s.objects.begin(), s.objects.end(), [](const EllipsoidObject& o) { return o.half; });
+    if (half == s.objects.end() || !s.symmetry)
+        throw InputError("hand scene: mirror_contact needs a half object and its symmetry plane (symmetry = true)");
+    double reach = 0.0, y_lo = 0.0, y_hi = 0.0;
+    for (const auto& l : s.hand.drum.levels) {
+        reach = std::max(reach, l.radius);
+        y_lo = std::min(y_lo, l.y_bottom), y_hi = std::max(y_hi, l.y_top);
+    }
+    double longest = 0.0;
+    for (const auto& f : s.hand.fingers) longest = std::max(longest, f.length);
+    reach += longest + 0.05;
+    Plate wall;
+    wall.part = "mirror-plane";
+    const Vec3& c = s.hand.drum.centre;
+    wall.centre = Vec3(c.x(), c.y() + 0.5 * (y_lo + y_hi), half->centre.z());
+    wall.u = 2.0 * reach * Vec3::UnitX();
+    wall.v = -2.0 * (reach + 0.5 * (y_hi - y_lo)) * Vec3::UnitY();  // u x v = -z: pushes the fingers back to z < plane
+    // Segments of about kMirrorSegment: the contact search's margin is a quarter of the mean master
+    // segment size, so only finger nodes within a few mm of the plane are checked each cycle (one
+    // segment of the wall's 0.5 m made every finger node a candidate: contact 48 % of the step time
+    // in football_sweep, 23 % without the wall).
+    wall.nu = static_cast<int>(std::ceil(wall.u.norm() / kMirrorSegment));
+    wall.nv = static_cast<int>(std::ceil(wall.v.norm() / kMirrorSegment));
+    wall.depth = kMirrorDepth;
+    s.plates.push_back(wall);
+    ContactPair pair;
+    pair.slave = "fingers";
+    pair.master = wall.part;  // frictionless: no sliding between a finger and its mirror image on the plane
+    s.contacts.push_back(pair);
+}
+}  // namespace
+
 HandModel::HandModel(const Scene& scene) : scene_(scene) {
+    if (scene_.mirror_contact) add_mirror_wall(scene_);
     Mesh mesh = hand_mesh(scene_.hand);
     std::map<std::string, ElasticMaterial> material;
     for (const auto& f : scene_.hand.fingers) material["finger-" + f.name] = scene_.hand.rubber;

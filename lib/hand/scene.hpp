@@ -67,6 +67,12 @@ struct Plate {
     RigidMotion motion() const { return RigidMotion::translation(direction, speed); }
 };
 
+/// Deepest penetration the mirror wall (Scene::mirror_contact) takes as contact [m]: two finger
+/// elements (4 mm layers), far beyond any penetration a contact that holds allows.
+inline constexpr double kMirrorDepth = 0.008;
+/// Segment size of the mirror wall [m] (HandModel: a finer wall keeps the candidate search local).
+inline constexpr double kMirrorSegment = 0.02;
+
 /// A contact pair: the slave part's surface nodes against the master part's faces (two_way: and
 /// back). A rigid master is a plate's part name or "drum". "fingers" stands for every finger of
 /// the hand as one surface (one search and one stable-step bound; forces per finger follow from
@@ -105,6 +111,16 @@ struct Scene {
     /// Half objects get u_z = 0 on their cut plane (Table 4-3 "ellipsoid symmetric plane DOF UZ = 0"),
     /// and their cut faces are left out of the contact surface (the mirrored half is there, not a wall).
     bool symmetry = true;
+    /// Half models: the fingers meet their mirror images (the other half's fingers) on the symmetry
+    /// plane of the half objects. By symmetry a finger and its mirror image touch on that plane
+    /// itself and do not slide against each other there, so a frictionless rigid wall at the plane
+    /// models that contact exactly: HandModel adds a fixed plate "mirror-plane" (covering the hand's
+    /// reach, normal towards the fingers' side, kMirrorDepth deep) and the pair "fingers on
+    /// mirror-plane". A finger and the mirror image of another finger are not modelled (they would
+    /// touch beside the plane). Needs a half object (the plane z = its centre z). The wall holds the
+    /// fingers' free nodes; root nodes ride the drum's prescribed motion and are not stopped by it
+    /// (test Hand.MirrorContactKeepsFingersOnTheirSideOfTheSymmetryPlane).
+    bool mirror_contact = false;
     DampingFrame damping_frame = DampingFrame::absolute;
     /// true: the fingers start with the drum's rigid-rotation velocity (spinning, undeformed);
     /// false: at rest while their roots start turning (a jolt at t = 0).

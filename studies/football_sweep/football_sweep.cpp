@@ -13,8 +13,9 @@
 //     10 in/s from the case's switch time (Table 4-4);
 //   - contact: every finger with the football (two-way), the football with the pallet and with the
 //     drum; mu = mu_s = 0.4 (Eq 2-35 with c_d = 0). Finger against finger is not in the judged runs:
-//     neighbouring fingers stay 12 mm apart or more (measured, min_clearance); fingers against their
-//     mirror images across the symmetry plane are not modelled (README reconstruction 9);
+//     neighbouring fingers stay 12 mm apart or more (measured, min_clearance). Each finger against
+//     its mirror image (the other drum's) is: a frictionless wall on the symmetry plane (the case
+//     file's [hand] mirror_contact; README reconstruction 9);
 //   - gravity 9.81 m/s^2 in -y.
 //
 // What the study adds to the case file: Table 4-4's cases (each replaces the pallet's speed schedule;
@@ -32,6 +33,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -97,6 +99,7 @@ Scene football_scene(const Case& c, const Variant& v, double t0 = 0.0) {
         s.plates.at(0).speed = c.schedule();
     } else {
         s.objects.clear(), s.plates.clear(), s.contacts.clear();
+        s.mirror_contact = false;  // no half object, no symmetry plane (the fingers-only run ends at 0.1 s, long before any finger reaches it)
     }
     return seen_from(std::move(s), t0);
 }
@@ -124,6 +127,10 @@ struct Record {
     std::vector<double> t, x, y, z, rel_x, s_ball, s_ball_cfc, s_fingers;   // rows every kRow
     std::map<std::string, std::vector<double>> tip_y, impulse;
     std::map<std::string, double> lag, min_clearance;                       // per finger / finger pair
+    // Per finger: its surface nodes' farthest excursion beyond the half football's symmetry plane
+    // (where the mirrored half of the model is) every 0.1 ms: [distance (m), time (s), node, first
+    // time beyond the plane (s; -1: never)] (README "Penetration").
+    std::map<std::string, std::array<double, 4>> beyond_plane;
     std::map<std::string, PerPair> pairs, fingers;
     std::vector<double> snap_t;
     std::vector<std::vector<double>> snap_x;                                // node coordinates (flat)
@@ -144,7 +151,7 @@ json to_json(const Record& r) {
               {"s_ball_cfc", r.s_ball_cfc}, {"s_fingers", r.s_fingers}, {"tip_y", r.tip_y}, {"impulse", r.impulse},
               {"lag", r.lag}, {"min_clearance", r.min_clearance}, {"snap_t", r.snap_t}, {"snap_x", r.snap_x},
               {"y0", r.y0}, {"window", r.window}, {"s_cfc_max", r.s_cfc_max}, {"s_raw_max", r.s_raw_max},
-              {"pen_window", r.pen_window},
+              {"pen_window", r.pen_window}, {"beyond_plane", r.beyond_plane},
               {"summary", r.summary}};
     for (const auto& [n, p] : r.pairs) j["pairs"][n] = pair_json(p);
     for (const auto& [n, p] : r.fingers) j["fingers"][n] = pair_json(p);
@@ -161,6 +168,7 @@ Record from_json(const json& j) {
     j.at("min_clearance").get_to(r.min_clearance), j.at("snap_t").get_to(r.snap_t), j.at("snap_x").get_to(r.snap_x);
     r.y0 = j.at("y0"), r.window = j.at("window"), r.s_cfc_max = j.at("s_cfc_max"), r.s_raw_max = j.at("s_raw_max");
     r.pen_window = j.at("pen_window");
+    if (j.contains("beyond_plane")) j.at("beyond_plane").get_to(r.beyond_plane);
     r.summary = j.at("summary");
     if (j.contains("pairs")) for (const auto& [n, a] : j["pairs"].items()) r.pairs[n] = pair_from(a);
     if (j.contains("fingers")) for (const auto& [n, a] : j["fingers"].items()) r.fingers[n] = pair_from(a);
@@ -216,6 +224,7 @@ struct Recorder {
     };
     std::vector<Sharer> sharers;
     std::vector<int> pallet_nodes;  // the pallet's mesh nodes (rigid)
+    double plane_z = 0;             // the half football's symmetry plane
 
     Recorder(const Variant& v_, const RunOptions& o_, const HandModel& hm, int id) : v(v_), o(o_) {
         r.id = id;
@@ -229,6 +238,8 @@ struct Recorder {
             for (int b : hm.mesh().blocks_of_part("pallet"))
                 for (int n : hm.mesh().blocks[b].connectivity) nodes.insert(n);
             pallet_nodes.assign(nodes.begin(), nodes.end());
+            plane_z = hm.scene().objects.at(0).centre.z();
+            for (const auto& f : kFingers) r.beyond_plane[f] = {0.0, -1.0, -1.0, -1.0};
         }
         next_bin = next_row = next_clearance = next_log = o.start;
     }
@@ -259,6 +270,7 @@ struct Recorder {
         bin_s = 0;
         if (r.lag.empty() && tau >= kLagTime) r.lag = tip_lags(hm, s.state(), tau);
         if (t >= next_clearance) clearances(s, t);
+        if (v.football) plane_crossing(s, t);
         if (t >= next_log) log(s, hm, t, sb);
         if (snap < kSnapshots.size() && t >= kSnapshots[snap]) {
             ++snap;
@@ -372,6 +384,18 @@ struct Recorder {
         }
     }
 
+    // Every 0.1 ms: each finger's farthest surface node beyond the symmetry plane (Record::beyond_plane).
+    void plane_crossing(const ExplicitSolver& s, double t) {
+        for (const auto& f : kFingers) {
+            auto& b = r.beyond_plane[f];
+            for (int n : surf[f]) {
+                const double d = s.state().x[n].z() - plane_z;
+                if (d > 0.0 && b[3] < 0.0) b[3] = t;
+                if (d > b[0]) b = {d, t, static_cast<double>(n), b[3]};
+            }
+        }
+    }
+
     // Progress, every 0.1 s simulated.
     void log(const ExplicitSolver& s, const HandModel& hm, double t, double sb) {
         next_log += 0.1;
@@ -409,6 +433,10 @@ struct Recorder {
                    o.name, r.id, sum.steps, prefix.is_null() ? "" : " (after its restart)", 1e6 * sum.min_dt, sum.wall_s,
                    1e-6 * sum.element_cycles_per_s, 100 * r.summary.value("contact_share", 0.0),
                    sum.energy.relative_error(), max_penetration());
+        for (const auto& [f, b] : r.beyond_plane)
+            if (b[3] >= 0.0)
+                fmt::print("  {} case {}: finger {} beyond the symmetry plane from {:.4f} s, farthest {:.2f} mm at {:.4f} s (node {})\n",
+                           o.name, r.id, f, b[3], 1e3 * b[0], b[1], static_cast<int>(b[2]));
         (void)hm;
     }
 };
@@ -643,9 +671,21 @@ int main(int argc, char** argv) {
         par::set_threads(1);  // one thread per process: the cases run as forked processes
         std::signal(SIGUSR1, request_stop_signal);
         // Development switches: FOOTBALL_END=<s> caps the simulated time, FOOTBALL_ONLY=<case> runs one
-        // case (no checks), FOOTBALL_MIRROR=1 with it: the mirror R_x roll sign.
-        g_case_scene = explicit_case::hand_scene(
-            explicit_case::read_case(study.source_dir() / "studies/football_sweep/football_sweep.toml"));
+        // case (no checks), FOOTBALL_MIRROR=1 with it: the mirror R_x roll sign; FOOTBALL_MIRROR_WALL and
+        // FOOTBALL_CASE below.
+        // FOOTBALL_CASE=<file> (development, with FOOTBALL_ONLY): a copy of the case file instead of the
+        // study's, e.g. the friction decay c_d of Eq 2-35 (README "Friction with c_d > 0").
+        const char* case_file = std::getenv("FOOTBALL_CASE");
+        if (case_file && !std::getenv("FOOTBALL_ONLY")) throw InputError("football_sweep: FOOTBALL_CASE needs FOOTBALL_ONLY (no checks on a variant)");
+        g_case_scene = explicit_case::hand_scene(explicit_case::read_case(
+            case_file ? std::filesystem::path(case_file) : study.source_dir() / "studies/football_sweep/football_sweep.toml"));
+        // FOOTBALL_MIRROR_WALL=0|1 (development, with FOOTBALL_ONLY): the fingers against their mirror
+        // images across the football's symmetry plane off or on (the case file's [hand] mirror_contact,
+        // on in the judged runs; README reconstruction 9).
+        if (const char* w = std::getenv("FOOTBALL_MIRROR_WALL")) {
+            if (!std::getenv("FOOTBALL_ONLY")) throw InputError("football_sweep: FOOTBALL_MIRROR_WALL needs FOOTBALL_ONLY (no checks on a variant)");
+            g_case_scene.mirror_contact = std::string(w) != "0";
+        }
         RunOptions o;
         o.window = kWindow;  // the judged window (README "Cost"): checks use t <= kWindow only
         // The judged runs start at kStart (README "Cost": the fingers spin up undeformed and settle

@@ -233,8 +233,8 @@ void expect_same_scene(const hand::Scene& a, const hand::Scene& b) {
     }
     EXPECT_EQ(a.gravity, b.gravity);
     expect_same_curve(a.gravity_curve, b.gravity_curve, "gravity");
-    EXPECT_EQ(std::tie(a.symmetry, a.damping_frame, a.fingers_start_spinning, a.drum_segments),
-              std::tie(b.symmetry, b.damping_frame, b.fingers_start_spinning, b.drum_segments));
+    EXPECT_EQ(std::tie(a.symmetry, a.mirror_contact, a.damping_frame, a.fingers_start_spinning, a.drum_segments),
+              std::tie(b.symmetry, b.mirror_contact, b.damping_frame, b.fingers_start_spinning, b.drum_segments));
 }
 
 // The built models: meshes, masses, pairs, rigid parts, and the first ~20 cycles bit for bit.
@@ -448,6 +448,8 @@ TEST(ExplicitCase, ReaderRefusesWithFileLineAndKey) {
     EXPECT_NE(refused(base + "[[contact]]\nslave = \"b\"\nmaster = \"flor\"\n").find("master: 'flor' is not a part or rigid part"), std::string::npos);
     EXPECT_NE(refused(base + "[gravity]\ng = [0.0, nan, 0.0]\n").find("g[1]: must be a finite number"), std::string::npos);
     EXPECT_NE(refused(base + "[[boundary]]\nset = \"x0-b\"\nfix = [\"x\"]\nvelocity = [1.0, 0.0, 0.0]\n").find("give exactly one of fix"), std::string::npos);
+    const std::string mirror = base + "[hand]\nfingers = \"table-4-1\"\nmaterial = \"m\"\nsymmetry = false\nmirror_contact = true\n";
+    EXPECT_NE(refused(mirror).find("mirror_contact: needs symmetry = true"), std::string::npos) << refused(mirror);
 }
 
 }  // namespace

@@ -327,3 +327,58 @@ TEST(Hand, FingerPairContactKeepsPressedFingersApart) {
     EXPECT_LT(h.max_penetration_fraction, 0.2);    // and did not interpenetrate
     EXPECT_GT(f.max_penetration_fraction, 0.5);    // without the force B goes into A
 }
+
+// Scene::mirror_contact: a finger whose tip sweeps across the symmetry plane of a half object stays
+// on its side of it (the frictionless wall "mirror-plane"); without it the tip crosses the plane.
+// Only the finger's free nodes are measured: its root nodes ride the prescribed drum motion, which
+// no contact can stop. (The first version of this test swept finger D for 10 ms from theta = 0,
+// where it points -z and moves tangentially, and took the highest of all its nodes: that was a root
+// node carried by the drum, which went as far "through" the wall with it as without it, and the
+// wall was withdrawn for that. The wall itself was never at fault.)
+TEST(Hand, MirrorContactKeepsFingersOnTheirSideOfTheSymmetryPlane) {
+    // Finger D on a drum turning at 10 rad/s, starting 35 deg before it points +z (its tip's
+    // highest z); a small half object far away (only its symmetry plane z = plane matters).
+    // Returns the summary and the largest z of the finger's free (non-root) nodes over the run.
+    auto run = [](double plane, bool mirror, double& zmax, double& z0) {
+        Scene s;
+        s.hand.fingers = {table_4_1()[3]};
+        s.hand.drum = stepped_drum(10.0);
+        s.hand.drum.initial_angle = (180.0 - 35.0) * std::numbers::pi / 180.0;
+        EllipsoidObject o;
+        o.part = "object";
+        o.semi_axes = Vec3(20, 20, 20) * mm;
+        o.grid = EllipsoidGrid{4, 4, 2, 1, 0.5};
+        o.material = ElasticMaterial::make("rubber", 6.1e6, 0.49, 1000.0);
+        o.centre = Vec3(1.0, 0.0, plane);
+        s.objects.push_back(o);
+        s.mirror_contact = mirror;
+        HandModel hm(s);
+        ExplicitOptions opt = quiet_run(70e-3);  // 40 deg of drum turn: past the top
+        opt.observer_interval = 0.0;
+        ExplicitSolver solver(hm.model(), opt);
+        const auto& root = hm.mesh().node_set("root-D");
+        std::vector<int> free;
+        for (int n : hm.part_nodes("finger-D"))
+            if (std::find(root.begin(), root.end(), n) == root.end()) free.push_back(n);
+        zmax = z0 = -1e9;
+        for (int n : free) z0 = std::max(z0, hm.mesh().nodes[n].z());
+        solver.observer = [&](const ExplicitSolver& sv) {
+            for (int n : free) zmax = std::max(zmax, sv.state().x[n].z());
+        };
+        return solver.run();
+    };
+    double zfree = 0, z0 = 0;
+    run(1.0, false, zfree, z0);
+    ASSERT_GT(zfree, 175 * mm);  // the tip (radius ~184 mm) reaches near +z
+    // The plane 6 mm below the free tip's highest point: the tip must be pushed back 6 mm.
+    const double plane = zfree - 6 * mm;
+    double zheld = 0;
+    ASSERT_LT(z0, plane - 5 * mm);  // the finger starts well clear of the plane
+    const RunSummary held = run(plane, true, zheld, z0);
+    const auto& wall = interface(held, "fingers on mirror-plane");
+    fmt::print("finger D beyond its mirror plane: {:.2f} mm free, {:.3f} mm with the wall ({:.3f} of the element)\n",
+               1e3 * (zfree - plane), 1e3 * (zheld - plane), wall.max_penetration_fraction);
+    EXPECT_GT(wall.max_penetration_fraction, 0.0);  // it touched
+    EXPECT_LT(wall.max_penetration_fraction, 0.2);  // and stayed on its side
+    EXPECT_LT(zheld - plane, 1 * mm);
+}
