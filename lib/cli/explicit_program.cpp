@@ -9,6 +9,10 @@
 // run.json, histories.h5 and histories.dat / energies.dat, VTU/PVD when asked, restart dumps when
 // asked, as one io::RunFolder set. Progress on stderr (--quiet: none); Ctrl-C stops after the
 // current cycle, writes the state reached marked partial and exits 130.
+// Exit status: 0 a healthy run; 1 a run that finished but failed its health check (energy balance
+// error > 1 % or hourglass energy > 10 % of internal, check/run_health.hpp: the limits a study fails
+// a run for, with the same status 1), its files written for inspection; 2 bad input; 3 a run that
+// went unstable (nothing written); 4 any other error; 130 Ctrl-C.
 #include <iostream>
 #include <string>
 
@@ -33,8 +37,18 @@ int explicit_program(int argc, char** argv) {
         auto c = fem::explicit_case::read_case(line->case_path);
         if (!line->output.empty()) c.output.folder = line->output;
         if (line->end_time) fem::explicit_case::cut_at(c, *line->end_time);
-        std::cout << fem::explicit_case::run_case(c, line->quiet) << std::flush;
-        return 0;
+        const auto outcome = fem::explicit_case::run_case(c, line->quiet);
+        std::cout << outcome.summary << std::flush;
+        if (outcome.healthy()) return 0;
+        for (const std::string& verdict : outcome.unhealthy) {  // "FAIL   run health <run>: ..."
+            const auto at = verdict.find("run health ");
+            std::cerr << "fem-explicit: run health failed: " << (at == std::string::npos ? verdict : verdict.substr(at + 11))
+                      << '\n';
+        }
+        std::cerr << "fem-explicit: the results are in " << c.output.folder.string()
+                  << " for inspection, but are not to be relied on: energy that does not balance, or hourglass modes "
+                     "carrying the deformation, say the discretization does not resolve the loading\n";
+        return 1;
     });
 }
 

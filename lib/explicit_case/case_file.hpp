@@ -213,12 +213,23 @@ private:
 /// The solver options of a case, with its output files under `folder` (the run's staging folder).
 ExplicitOptions solver_options(const ExplicitCase& c, const CaseModel& m, const std::filesystem::path& folder);
 
+/// What run_case did: its summary text (summary.txt) and the verdict line of every run whose health
+/// failed (check/run_health.hpp: energy balance error above 1 % or hourglass energy above 10 % of
+/// internal; fem-explicit then exits 1). The files of an unhealthy run are written all the same:
+/// unlike an unstable run (SolverError, nothing written), it is a result the user must be able to
+/// inspect.
+struct CaseOutcome {
+    std::string summary;
+    std::vector<std::string> unhealthy;
+    bool healthy() const { return unhealthy.empty(); }
+};
+
 /// Runs a case into c.output.folder as one io::RunFolder set (summary.txt, run.json,
-/// histories.h5, histories.dat, energies.dat, VTU/PVD, restart dumps); returns the summary text.
+/// histories.h5, histories.dat, energies.dat, VTU/PVD, restart dumps) and judges each run's health.
 /// A case with [[phase]]s runs each phase into <folder>/<phase>/ (the same files), each after the
 /// first restarting from the dump its predecessor wrote at its start, and a summary.txt of all.
 /// quiet: no progress line. Ctrl-C: the state reached is written, marked partial (PARTIAL.txt), and
 /// fem::Interrupted is thrown.
-std::string run_case(const ExplicitCase& c, bool quiet = false);
+CaseOutcome run_case(const ExplicitCase& c, bool quiet = false);
 
 }  // namespace fem::explicit_case

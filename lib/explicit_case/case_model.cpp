@@ -295,10 +295,11 @@ void write_histories(const std::filesystem::path& dir, const History& h) {
 namespace {
 
 // One run of a case into `dir` (summary.txt, run.json, histories, VTU, restart dumps); the restart
-// dumps it wrote are added to `dumps`. `interrupted`: Ctrl-C's message (the state reached is written,
-// marked partial).
+// dumps it wrote are added to `dumps`, the verdict of a failed health check to `unhealthy`.
+// `interrupted`: Ctrl-C's message (the state reached is written, marked partial; not judged).
 std::string run_into(const ExplicitCase& c, const std::filesystem::path& dir, const std::filesystem::path& shown, bool quiet,
-                     std::vector<std::filesystem::path>& dumps, std::string& interrupted) {
+                     std::vector<std::filesystem::path>& dumps, std::vector<std::string>& unhealthy,
+                     std::string& interrupted) {
     std::filesystem::create_directories(dir);
     CaseModel m(c);
     ExplicitOptions opt = solver_options(c, m, dir);
@@ -318,8 +319,7 @@ std::string run_into(const ExplicitCase& c, const std::filesystem::path& dir, co
         text = interrupted + "\n";
     } else {
         nlohmann::json j = s.to_json();
-        std::vector<std::string> problems;
-        const auto health = check::judge_run_health({{s.name, j}}, {}, c.source, problems);
+        const auto health = check::judge_run_health({{s.name, j}}, {}, c.source, unhealthy);
         text = s.text();
         for (const auto& h : health) {
             text += "health: " + h.text() + "\n";
@@ -335,15 +335,16 @@ std::string run_into(const ExplicitCase& c, const std::filesystem::path& dir, co
 
 }  // namespace
 
-std::string run_case(const ExplicitCase& c, bool quiet) {
+CaseOutcome run_case(const ExplicitCase& c, bool quiet) {
     // The output folder is checked (writable, not in use) before the model is built; the run's files
     // replace the previous set only when all are written.
     io::RunFolder out(c.output.folder, "fem-explicit");
     if (c.control.threads > 0) par::set_threads(c.control.threads);
     std::string text, interrupted;
+    std::vector<std::string> unhealthy;
     std::vector<std::filesystem::path> dumps;
     if (c.phases.empty()) {
-        text = run_into(c, out.staging(), c.output.folder, quiet, dumps, interrupted);
+        text = run_into(c, out.staging(), c.output.folder, quiet, dumps, unhealthy, interrupted);
     } else {
         // Phase k runs to the next phase's start and writes a dump there; phase k + 1 restarts from it
         // with its own model (objects released), as the thesis's flip restarts from the grasp.
@@ -356,7 +357,8 @@ std::string run_case(const ExplicitCase& c, bool quiet) {
             if (k + 1 < c.phases.size()) p.control.restart_times.push_back(c.phases[k + 1].start);
             const std::size_t before = dumps.size();
             text += fmt::format("== phase '{}' ({} to {} s) ==\n", c.phases[k].name, c.phases[k].start, p.control.end_time);
-            text += run_into(p, out.staging() / c.phases[k].name, c.output.folder / c.phases[k].name, quiet, dumps, interrupted);
+            text += run_into(p, out.staging() / c.phases[k].name, c.output.folder / c.phases[k].name, quiet, dumps, unhealthy,
+                             interrupted);
             if (k + 1 < c.phases.size() && interrupted.empty() && dumps.size() == before)
                 throw SolverError(fmt::format("{}: phase '{}' wrote no restart dump at {} s", c.source, c.phases[k].name, c.phases[k + 1].start));
         }
@@ -364,7 +366,7 @@ std::string run_case(const ExplicitCase& c, bool quiet) {
     }
     out.commit();
     if (!interrupted.empty()) throw Interrupted(interrupted + "; the state reached is in " + c.output.folder.string());
-    return text;
+    return {text, unhealthy};
 }
 
 }  // namespace fem::explicit_case

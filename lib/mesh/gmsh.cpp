@@ -624,7 +624,11 @@ std::string reply_of_reader(const std::filesystem::path& path, const std::string
                          " bytes; a count in the file far larger than the data it holds?)");
     }
 
-    // No reply: the reader died reading this file.
+    // No reply: the reader died reading this file. Every way it can die there is the file's doing and
+    // is reported alike, naming the file: a fatal signal (which one depends on what Gmsh's reader
+    // does with the malformed data: SIGSEGV for a null or wild pointer, SIGBUS, SIGFPE, SIGABRT from
+    // glibc's heap checks or AddressSanitizer with abort_on_error), or an exit without an answer (a
+    // sanitizer's report with its default exit status 1, or libgmsh calling exit()).
     const pid_t pid = reader.pid;
     forget_reader();
     int status = 0;
@@ -635,8 +639,9 @@ std::string reply_of_reader(const std::filesystem::path& path, const std::string
         throw InputError("Gmsh crashed reading '" + path.string() + "' (signal " + std::to_string(signal) + ", " +
                          ::strsignal(signal) + "): the file is malformed");
     }
-    throw std::runtime_error(where + ": the Gmsh reader process ended without an answer (exit status " +
-                             std::to_string(WIFEXITED(status) ? WEXITSTATUS(status) : -1) + ")");
+    throw InputError("Gmsh stopped reading '" + path.string() + "' without an answer (its reader process exited with status " +
+                     std::to_string(WIFEXITED(status) ? WEXITSTATUS(status) : -1) +
+                     ": a sanitizer's report on Gmsh's code, or Gmsh exiting on the file): the file is malformed");
 }
 }  // namespace
 

