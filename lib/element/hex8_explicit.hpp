@@ -179,6 +179,16 @@ void characteristic_length(const Lanes (&x)[3][8], Lanes& length);
 void critical_time_step(const Lanes (&x)[3][8], const Lanes& trD, double wave_speed, const BulkViscosity& bulk,
                         Lanes& dt);
 
+// The nodal coordinates x, displacements u = x - X and velocities v of kLanes elements, gathered into
+// lanes: node a's component i of the element in lane l at [i][a][l]. xs, Xs, vs are node-major (3
+// doubles per node), conn[l] the nodes of the element in lane l; lanes at and beyond `lanes` repeat
+// the last element. With AVX-512 the lanes' (x, y, z) triples are transposed in registers and each
+// lane vector is stored whole; scalar stores into the lanes, read back at once by the kernel's vector
+// loads, stall the store-to-load forwarding (rotating_finger_contact: -11 % CPU per case). Data
+// movement and one IEEE subtraction per lane either way: the same bits.
+void gather(const double* xs, const double* Xs, const double* vs, const std::array<int, 8>* conn, int lanes,
+            Lanes (&x)[3][8], Lanes (&u)[3][8], Lanes (&v)[3][8]);
+
 /// Convenience overloads on an array of points (tests).
 double exact_volume(const std::array<Vec3, 8>& x);
 double characteristic_length(const std::array<Vec3, 8>& x);

@@ -148,19 +148,7 @@ GroupForceResult Hex8Group::internal_forces(NodalState& s, bool compute_dt) {
                 const char* next = reinterpret_cast<const char*>(&packed_[std::min(kb / W + 2, last_block)]);
                 for (std::size_t b = 0; b < sizeof(hex8::Hex8PackedBlock); b += 64) __builtin_prefetch(next + b);
             }
-            // Gather (scalar stores into the lanes: on 100,000 elements this keeps more node loads in
-            // flight than assembling each vector in registers, which was 10 % slower there).
-            for (int l = 0; l < W; ++l) {
-                const auto& cn = kconn_[kb + std::min(l, lanes - 1)];  // spare lanes repeat the last element
-                for (int a = 0; a < 8; ++a) {
-                    const std::size_t o = 3 * static_cast<std::size_t>(cn[a]);
-                    for (int i = 0; i < 3; ++i) {
-                        x[i][a][l] = xs[o + i];
-                        u[i][a][l] = xs[o + i] - Xs[o + i];
-                        v[i][a][l] = vs[o + i];
-                    }
-                }
-            }
+            hex8::gather(xs, Xs, vs, &kconn_[kb], lanes, x, u, v);
             hex8::internal_force(packed_[kb / W], kmat, u, v, r, book_viscous);
             // Table 2-1 hexahedron on the current coordinates, with the bulk-viscosity Q term:
             // fem::cfl::critical_time_step's formula with the kernel's cheaper exact V_e / A_emax

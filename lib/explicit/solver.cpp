@@ -1480,8 +1480,10 @@ RunSummary ExplicitSolver::run() {
                 }
                 const Vec3 vm = s_.v[i];
                 const Vec3 F = providers ? Vec3(fext_[i] + fprov_[i] - s_.f[i]) : Vec3(fext_[i] - s_.f[i]);
+                // Undamped nodes (a = 0) skip the three divisions by 1 + a = 1: (1 - 0) vm = vm and
+                // x / 1 = x exactly, so the same bits.
                 const double a = alpha_[i] * dtavg * 0.5;
-                Vec3 vp = ((1.0 - a) * vm + (dtavg / m) * F) / (1.0 + a);
+                Vec3 vp = a == 0.0 ? Vec3(vm + (dtavg / m) * F) : Vec3(((1.0 - a) * vm + (dtavg / m) * F) / (1.0 + a));
                 const unsigned fx = fixed_[i] & 7u;
                 const int ti = target_index_[i];
                 if (fx || ti >= 0) {
@@ -1501,13 +1503,20 @@ RunSummary ExplicitSolver::run() {
                     }
                 }
                 const Vec3 vavg = 0.5 * (vm + vp);
-                const double we = fext_[i].dot(vavg) * dtavg;
-                p.wext += we;
-                p.wext_half += 0.5 * fext_[i].dot(vm) * dtavg;
-                p.wabs += std::abs(we);
-                p.damp += alpha_[i] * m * vavg.squaredNorm() * dtavg;
-                p.damp_half += 0.5 * alpha_[i] * m * vavg.dot(vm) * dtavg;
-                if (providers) {
+                // Terms that are zero are skipped (no loads: fext = 0; no mass damping: alpha = 0;
+                // no contact force on the node): adding a zero leaves these sums' bits as they are
+                // (they start at +0 and never become -0).
+                if (has_loads_) {
+                    const double we = fext_[i].dot(vavg) * dtavg;
+                    p.wext += we;
+                    p.wext_half += 0.5 * fext_[i].dot(vm) * dtavg;
+                    p.wabs += std::abs(we);
+                }
+                if (alpha_[i] != 0.0) {
+                    p.damp += alpha_[i] * m * vavg.squaredNorm() * dtavg;
+                    p.damp_half += 0.5 * alpha_[i] * m * vavg.dot(vm) * dtavg;
+                }
+                if (providers && fprov_[i] != Vec3::Zero()) {
                     p.wprov += fprov_[i].dot(vavg) * dtavg;
                     p.wprov_half += 0.5 * fprov_[i].dot(vm) * dtavg;
                 }

@@ -18,6 +18,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <algorithm>
 #include <random>
 
@@ -266,6 +267,39 @@ TEST(Hex8FastKernel, GroupBlocksEqualOneElementKernel) {
     EXPECT_NEAR(res.hourglass_energy, ref.hourglass_energy, 1e-13 * ref.hourglass_energy);
     EXPECT_NEAR(res.viscous_power, ref.viscous_power, 1e-13 * std::abs(ref.viscous_power));
     for (int i = 0; i < mesh.node_count(); ++i) EXPECT_LT((s.f[i] - ref.f[i]).norm(), 1e-13 * ref.fmax) << i;
+}
+
+// hex8::gather (AVX-512 transposition on this machine, scalar stores elsewhere): every lane holds
+// exactly x, x - X and v of its element's nodes, the spare lanes the last element's; the last node
+// of the arrays included (its triple is loaded masked, nothing read past the end).
+TEST(Hex8FastKernel, GatherPutsEachElementsNodesInItsLane) {
+    const int nodes = 40;
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<double> g(-1.0, 1.0);
+    std::vector<Vec3> x, X, v;
+    for (int i = 0; i < nodes; ++i) {
+        X.push_back(Vec3(g(rng), g(rng), g(rng)));
+        x.push_back(X.back() + 1e-3 * Vec3(g(rng), g(rng), g(rng)));
+        v.push_back(Vec3(g(rng), g(rng), g(rng)));
+    }
+    std::vector<std::array<int, 8>> conn(8);
+    std::uniform_int_distribution<int> pick(0, nodes - 1);
+    for (auto& c : conn)
+        for (int& n : c) n = pick(rng);
+    conn[2][5] = nodes - 1;  // the arrays' last node
+    for (int lanes : {8, 5, 1}) {
+        alignas(hex8::kLanesAlign) hex8::Lanes xl[3][8], ul[3][8], vl[3][8];
+        hex8::gather(x[0].data(), X[0].data(), v[0].data(), conn.data(), lanes, xl, ul, vl);
+        for (int l = 0; l < hex8::kLanes; ++l)
+            for (int a = 0; a < 8; ++a)
+                for (int i = 0; i < 3; ++i) {
+                    const int n = conn[std::min(l, lanes - 1)][a];
+                    const double du = x[n][i] - X[n][i];
+                    EXPECT_EQ(xl[i][a][l], x[n][i]) << lanes << " " << l << " " << a << " " << i;
+                    EXPECT_EQ(std::memcmp(&ul[i][a][l], &du, sizeof du), 0) << lanes << " " << l << " " << a;
+                    EXPECT_EQ(vl[i][a][l], v[n][i]) << lanes << " " << l << " " << a << " " << i;
+                }
+    }
 }
 
 // Chunk colouring (par::ChunkColouring): every chunk gets exactly one colour and two chunks of a
