@@ -96,7 +96,9 @@ TEST(ShellBtStatics, CantileverStripMatchesBeamTheory) {
         EXPECT_LT(r.ke_over_ie, 1e-6);
         EXPECT_LT(std::abs(err), previous);
         previous = std::abs(err);
-        if (nx == 16) EXPECT_LT(std::abs(err), 2e-3);
+        if (nx == 16) {
+            EXPECT_LT(std::abs(err), 2e-3);
+        }
         EXPECT_LT(r.max_hg_over_ie, 1e-3);  // uniform bending excites no hourglass mode
     }
 }
@@ -187,7 +189,9 @@ TEST(ShellBtStatics, SquarePlatesMatchTimoshenko) {
             EXPECT_LT(r.ke_over_ie, 1e-6) << cs.name;
             if (cs.load == Load::Uniform) {
                 EXPECT_LT(std::abs(err), previous) << cs.name << " n " << n;
-                if (n == 16) EXPECT_LT(std::abs(err), 0.005) << cs.name;
+                if (n == 16) {
+                    EXPECT_LT(std::abs(err), 0.005) << cs.name;
+                }
             } else if (n >= 8) {
                 EXPECT_LT(std::abs(err), 0.01) << cs.name << " n " << n;
             }
