@@ -438,7 +438,8 @@ void read_phases(const TomlTable& root, ExplicitCase& c) {
 
 ExplicitCase from_document(const input::TomlDocument& doc) {
     const TomlTable root = doc.root();
-    root.allow({"control", "output", "material", "part", "rigid_part", "hand", "contact", "boundary", "load", "gravity", "phase"});
+    root.allow({"control", "output", "material", "part", "rigid_part", "hand", "contact", "rigid_wall", "boundary", "load", "gravity",
+                "phase"});
     ExplicitCase c;
     c.source = doc.source();
     c.base = doc.base();
@@ -525,6 +526,26 @@ ExplicitCase from_document(const input::TomlDocument& doc) {
         if (t.has("two_way") && has(rigid, k.master))
             t.fail("two_way", "has no effect against a rigid master (its nodes carry no contact forces); remove it");
         c.contacts.push_back(k);
+    }
+    for (const TomlTable& t : root.tables("rigid_wall")) {
+        if (c.hand) t.fail("a case with [hand] takes no [[rigid_wall]]: its symmetry-plane wall is [hand] mirror_contact");
+        t.allow({"name", "point", "normal", "slave", "penalty_scale", "depth"});
+        RigidWall w;
+        w.line = line_of(t);
+        w.point = vec3(t, "point");
+        w.normal = vec3(t, "normal");
+        if (!(w.normal.norm() > 0.0)) t.fail("normal", "must not be zero");
+        w.slaves = t.strings("slave");
+        if (w.slaves.empty()) t.fail("slave", "names no part");
+        for (const std::string& p : w.slaves)
+            if (!has(deformable, p))
+                unknown_name(t, "slave", p, has(rigid, p) ? "deformable (a rigid part moves by its motion)" : "a part", deformable);
+        w.penalty_scale = t.real_or("penalty_scale", 0.1, Range::positive());
+        w.depth = t.real_or("depth", w.depth, Range::positive());
+        std::string parts;
+        for (const std::string& p : w.slaves) parts += (parts.empty() ? "" : "+") + p;
+        w.name = t.string_or("name", fmt::format("{} on rigid-wall-{}", parts, c.rigid_walls.size() + 1));
+        c.rigid_walls.push_back(w);
     }
     for (const TomlTable& t : root.tables("boundary")) {
         if (c.hand) t.fail("a case with [hand] takes no [[boundary]]: its fingers are tied to the drum and half objects get "

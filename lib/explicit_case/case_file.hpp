@@ -104,6 +104,17 @@ struct Contact : hand::ContactPair {
     int line = 0;
 };
 
+/// One [[rigid_wall]]: a fixed frictionless planar rigid wall (LS-DYNA *RIGIDWALL_PLANAR, penalty;
+/// contact/rigid_wall.hpp) holding the surface nodes of deformable parts on its normal's side.
+struct RigidWall {
+    std::string name;              // pair name in outputs (default "<parts> on rigid-wall-<k>")
+    Vec3 point = Vec3::Zero(), normal = Vec3::UnitZ();
+    std::vector<std::string> slaves;  // deformable parts
+    double penalty_scale = 0.1;    // LS-DYNA SLSFAC
+    double depth = std::numeric_limits<double>::infinity();  // deepest penetration taken as contact [m]
+    int line = 0;
+};
+
 /// One [[boundary]] entry: exactly one of fix, velocity, displacement, symmetry, follow.
 struct Boundary {
     enum class Kind { fix, velocity, displacement, symmetry, follow };
@@ -165,6 +176,7 @@ struct ExplicitCase {
     std::vector<Part> parts;
     std::vector<RigidPart> rigid_parts;
     std::vector<Contact> contacts;
+    std::vector<RigidWall> rigid_walls;
     std::vector<Boundary> boundaries;
     std::vector<Load> loads;
     std::optional<std::pair<Vec3, Curve>> gravity;

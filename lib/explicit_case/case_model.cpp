@@ -10,6 +10,7 @@
 
 #include "check/run_health.hpp"
 #include "contact/explicit_contact.hpp"
+#include "contact/rigid_wall.hpp"
 #include "core/error.hpp"
 #include "core/progress.hpp"
 #include "deck/deck.hpp"
@@ -228,6 +229,20 @@ CaseModel::CaseModel(const ExplicitCase& c) {
             }
             return 0;
         });
+    }
+    for (std::size_t k = 0; k < c.rigid_walls.size(); ++k) {
+        const RigidWall& w = c.rigid_walls[k];
+        located(at(c, w.line, fmt::format("rigid_wall[{}]", k)), [&] {
+            std::vector<contact::ContactSurface> each;
+            for (const std::string& part : w.slaves)
+                for (const Part& p : c.parts)
+                    if (p.name == part) each.push_back(contact::ContactSurface::from_part(msh, part, p.material));
+            contact::add_rigid_wall(model, contact::PlanarWall(w.name, w.point, w.normal,
+                                                               contact::ContactSurface::merge(w.name, each),
+                                                               {w.penalty_scale, w.depth}));
+            return 0;
+        });
+        pairs_.push_back(w.name);
     }
 }
 

@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "contact/contact.hpp"
+#include "contact/rigid_wall.hpp"
 #include "explicit/solver.hpp"
 #include "hand/hand.hpp"
 #include "mesh/ellipsoid.hpp"
@@ -70,8 +71,6 @@ struct Plate {
 /// Deepest penetration the mirror wall (Scene::mirror_contact) takes as contact [m]: two finger
 /// elements (4 mm layers), far beyond any penetration a contact that holds allows.
 inline constexpr double kMirrorDepth = 0.008;
-/// Segment size of the mirror wall [m] (HandModel: a finer wall keeps the candidate search local).
-inline constexpr double kMirrorSegment = 0.02;
 
 /// A contact pair: the slave part's surface nodes against the master part's faces (two_way: and
 /// back). A rigid master is a plate's part name or "drum". "fingers" stands for every finger of
@@ -114,12 +113,13 @@ struct Scene {
     /// Half models: the fingers meet their mirror images (the other half's fingers) on the symmetry
     /// plane of the half objects. By symmetry a finger and its mirror image touch on that plane
     /// itself and do not slide against each other there, so a frictionless rigid wall at the plane
-    /// models that contact exactly: HandModel adds a fixed plate "mirror-plane" (covering the hand's
-    /// reach, normal towards the fingers' side, kMirrorDepth deep) and the pair "fingers on
-    /// mirror-plane". A finger and the mirror image of another finger are not modelled (they would
-    /// touch beside the plane). Needs a half object (the plane z = its centre z). The wall holds the
-    /// fingers' free nodes; root nodes ride the drum's prescribed motion and are not stopped by it
-    /// (test Hand.MirrorContactKeepsFingersOnTheirSideOfTheSymmetryPlane).
+    /// models that contact exactly: HandModel adds a fixed planar rigid wall (contact/rigid_wall.hpp,
+    /// LS-DYNA *RIGIDWALL_PLANAR) "fingers on mirror-plane" on the plane z = the half object's centre
+    /// z, normal -z (towards the fingers' side), kMirrorDepth deep, holding every finger's surface
+    /// nodes (HandModel::mirror_wall). A finger and the mirror image of another finger are not
+    /// modelled (they would touch beside the plane). Needs a half object. The wall holds the fingers'
+    /// free nodes; root nodes ride the drum's prescribed motion and are not stopped by it (test
+    /// Hand.MirrorContactKeepsFingersOnTheirSideOfTheSymmetryPlane).
     bool mirror_contact = false;
     DampingFrame damping_frame = DampingFrame::absolute;
     /// true: the fingers start with the drum's rigid-rotation velocity (spinning, undeformed);
@@ -154,6 +154,8 @@ public:
     };
     const std::vector<Pair>& pairs() const { return pairs_; }
     contact::ContactInterface& contact(const std::string& name) const;
+    /// The mirror wall (Scene::mirror_contact); null without one.
+    const contact::PlanarWall* mirror_wall() const { return mirror_wall_; }
 
     /// Nodes of a part (every node of its elements, sorted).
     std::vector<int> part_nodes(const std::string& part) const;
@@ -178,6 +180,7 @@ private:
     Scene scene_;
     std::unique_ptr<ExplicitModel> model_;
     std::vector<Pair> pairs_;
+    const contact::PlanarWall* mirror_wall_ = nullptr;
     RigidMotion drum_motion_;
     std::map<std::string, std::vector<double>> lumped_;  // per part: lumped node mass (aligned with part_nodes)
     std::map<std::string, std::vector<int>> part_nodes_;

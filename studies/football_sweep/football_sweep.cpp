@@ -56,6 +56,7 @@
 #include "explicit/solver.hpp"
 #include "explicit_case/case_file.hpp"
 #include "hand/football.hpp"
+#include "hand/plane_excursion.hpp"
 #include "hand/scene.hpp"
 #include "io/atomic_file.hpp"
 #include "io/table.hpp"
@@ -130,7 +131,7 @@ struct Record {
     // Per finger: its surface nodes' farthest excursion beyond the half football's symmetry plane
     // (where the mirrored half of the model is) every 0.1 ms: [distance (m), time (s), node, first
     // time beyond the plane (s; -1: never)] (README "Penetration").
-    std::map<std::string, std::array<double, 4>> beyond_plane;
+    std::map<std::string, hand::PlaneExcursion> beyond_plane;
     std::map<std::string, PerPair> pairs, fingers;
     std::vector<double> snap_t;
     std::vector<std::vector<double>> snap_x;                                // node coordinates (flat)
@@ -239,7 +240,7 @@ struct Recorder {
                 for (int n : hm.mesh().blocks[b].connectivity) nodes.insert(n);
             pallet_nodes.assign(nodes.begin(), nodes.end());
             plane_z = hm.scene().objects.at(0).centre.z();
-            for (const auto& f : kFingers) r.beyond_plane[f] = {0.0, -1.0, -1.0, -1.0};
+            for (const auto& f : kFingers) r.beyond_plane[f] = hand::kNoExcursion;
         }
         next_bin = next_row = next_clearance = next_log = o.start;
     }
@@ -323,6 +324,18 @@ struct Recorder {
             }
             q.max_penetration = p.contact->max_penetration();
         }
+        if (const contact::PlanarWall* w = hm.mirror_wall()) {  // the fingers on their mirror images' plane
+            auto& q = r.pairs[w->name()];
+            q.impulse += w->force_on_wall().norm() * dt;
+            if (!w->nodes_in_contact().empty()) {
+                q.time += dt;
+                if (q.first < 0) q.first = t;
+                q.last = t;
+            }
+            if (w->max_penetration_fraction() > q.max_penetration_fraction)
+                q.max_penetration_fraction = w->max_penetration_fraction(), q.at = t;
+            q.max_penetration = w->max_penetration();
+        }
         if (!v.football) return;
         // Force on each finger from the football (fingers on football: pass 0 = finger nodes on
         // football faces, force on the finger; pass 1 = football nodes on finger faces, reaction).
@@ -386,14 +399,7 @@ struct Recorder {
 
     // Every 0.1 ms: each finger's farthest surface node beyond the symmetry plane (Record::beyond_plane).
     void plane_crossing(const ExplicitSolver& s, double t) {
-        for (const auto& f : kFingers) {
-            auto& b = r.beyond_plane[f];
-            for (int n : surf[f]) {
-                const double d = s.state().x[n].z() - plane_z;
-                if (d > 0.0 && b[3] < 0.0) b[3] = t;
-                if (d > b[0]) b = {d, t, static_cast<double>(n), b[3]};
-            }
-        }
+        for (const auto& f : kFingers) hand::track_plane_excursion(surf[f], s.state().x, plane_z, t, r.beyond_plane[f]);
     }
 
     // Progress, every 0.1 s simulated.

@@ -97,6 +97,22 @@ TEST(ExplicitCase, RigidPlateDragsABlockWithFriction) {
     EXPECT_NEAR(r.u("top", 1, 0.15), 0.0, 1e-4);  // stays on the plate (penetration of the penalty)
 }
 
+// A block thrown at a [[rigid_wall]] (fixed, frictionless, planar) leaves it with its speed (within 2 %:
+// tests/contact/test_rigid_wall.cpp's reasons), and the wall is reported as a contact interface.
+TEST(ExplicitCase, RigidWallThrowsABlockBackWithItsSpeed) {
+    CaseRun r(read_case(kCases / "block_on_wall.toml"), scratch("wall"));
+    double p = 0, m = 0;
+    for (int i = 0; i < r.solver->state().node_count(); ++i)
+        p += r.solver->state().mass[i] * r.solver->state().v[i].y(), m += r.solver->state().mass[i];
+    EXPECT_NEAR(p / m, 1.0, 0.02);
+    ASSERT_EQ(r.model->contact_pairs(), std::vector<std::string>{"block on rigid-wall-1"});
+    const auto it = std::find_if(r.summary.interfaces.begin(), r.summary.interfaces.end(),
+                                 [](const InterfaceSummary& s) { return s.name == "block on rigid-wall-1"; });
+    ASSERT_NE(it, r.summary.interfaces.end());
+    EXPECT_GT(it->max_penetration_fraction, 0.0);
+    EXPECT_LT(it->max_penetration_fraction, 0.2);
+}
+
 // A run restarted from a dump of the case's own restart_times continues bit for bit (friction
 // history included) as the uninterrupted run.
 TEST(ExplicitCase, RestartFromTheCaseFileContinuesBitIdentically) {
@@ -469,6 +485,11 @@ TEST(ExplicitCase, ReaderRefusesWithFileLineAndKey) {
     EXPECT_NE(refused(base + "[[boundary]]\nset = \"x0-b\"\nfix = [\"x\"]\nvelocity = [1.0, 0.0, 0.0]\n").find("give exactly one of fix"), std::string::npos);
     const std::string mirror = base + "[hand]\nfingers = \"table-4-1\"\nmaterial = \"m\"\nsymmetry = false\nmirror_contact = true\n";
     EXPECT_NE(refused(mirror).find("mirror_contact: needs symmetry = true"), std::string::npos) << refused(mirror);
+    const std::string wall = base + "[[rigid_wall]]\npoint = [0.0, 0.0, 0.0]\n";
+    EXPECT_NE(refused(wall + "normal = [0.0, 0.0, 0.0]\nslave = [\"b\"]\n").find("rigid_wall[0].normal: must not be zero"),
+              std::string::npos) << refused(wall + "normal = [0.0, 0.0, 0.0]\nslave = [\"b\"]\n");
+    EXPECT_NE(refused(wall + "normal = [0.0, 0.0, 1.0]\nslave = [\"c\"]\n").find("slave: 'c' is not a part"), std::string::npos)
+        << refused(wall + "normal = [0.0, 0.0, 1.0]\nslave = [\"c\"]\n");
 }
 
 }  // namespace
