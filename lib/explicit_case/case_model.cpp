@@ -335,15 +335,45 @@ std::string run_into(const ExplicitCase& c, const std::filesystem::path& dir, co
 
 }  // namespace
 
-CaseOutcome run_case(const ExplicitCase& c, bool quiet) {
+namespace {
+
+// The restart dump a resumed run starts from: the last one the killed run wrote in its staging
+// folder, which `out` adopted (LS-DYNA's `r=d3dump01`, found by itself).
+std::filesystem::path resume_point(const ExplicitCase& c, const io::RunFolder& out) {
+    const std::string folder = c.output.folder.string();
+    if (!out.adopted())
+        throw InputError(fmt::format("--resume: no killed run to resume in '{}' (a run that is killed leaves its "
+                                     "files, restart dumps included, in a '.run-*' folder there; there is none): "
+                                     "run the case without --resume",
+                                     folder));
+    try {
+        return ExplicitSolver::latest_restart(out.staging(), c.control.name);
+    } catch (const InputError&) {
+        throw InputError(fmt::format("--resume: the run killed in '{}' wrote no restart dump of run '{}' before it "
+                                     "ended ([control] restart_interval or restart_times make it write them): run "
+                                     "the case without --resume",
+                                     folder, c.control.name));
+    }
+}
+
+}  // namespace
+
+CaseOutcome run_case(const ExplicitCase& c, bool quiet, bool resume) {
+    if (resume && !c.phases.empty())
+        throw InputError(c.source + ": --resume: a case with [[phase]]s cannot be resumed (yet); run it again without --resume");
     // The output folder is checked (writable, not in use) before the model is built; the run's files
     // replace the previous set only when all are written.
-    io::RunFolder out(c.output.folder, "fem-explicit");
+    io::RunFolder out(c.output.folder, "fem-explicit", resume ? io::RunFolder::Leftovers::adopt : io::RunFolder::Leftovers::remove);
     if (c.control.threads > 0) par::set_threads(c.control.threads);
     std::string text, interrupted;
     std::vector<std::string> unhealthy;
     std::vector<std::filesystem::path> dumps;
-    if (c.phases.empty()) {
+    if (c.phases.empty() && resume) {
+        ExplicitCase resumed = c;
+        resumed.control.restart_from = resume_point(c, out);
+        if (!quiet) std::cerr << "fem-explicit: resuming from " << resumed.control.restart_from.string() << '\n';
+        text = run_into(resumed, out.staging(), c.output.folder, quiet, dumps, unhealthy, interrupted);
+    } else if (c.phases.empty()) {
         text = run_into(c, out.staging(), c.output.folder, quiet, dumps, unhealthy, interrupted);
     } else {
         // Phase k runs to the next phase's start and writes a dump there; phase k + 1 restarts from it

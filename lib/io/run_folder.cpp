@@ -54,7 +54,8 @@ bool inside(const fs::path& relative) {
 
 }  // namespace
 
-RunFolder::RunFolder(fs::path dir, std::string program) : dir_(std::move(dir)), program_(std::move(program)) {
+RunFolder::RunFolder(fs::path dir, std::string program, Leftovers leftovers)
+    : dir_(std::move(dir)), program_(std::move(program)) {
     std::error_code ec;
     if (fs::exists(dir_, ec) && !fs::is_directory(dir_, ec)) cannot_write(dir_, "it is a file, not a folder");
     if (!fs::exists(dir_, ec)) {
@@ -98,13 +99,25 @@ RunFolder::RunFolder(fs::path dir, std::string program) : dir_(std::move(dir)), 
     }
 
     // Holding the lock, no live run uses the folder: staging folders and temporaries left by killed
-    // runs can go.
+    // runs can go (the newest staging folder stays when it is to be adopted: the killed run's).
+    std::vector<fs::path> killed;
     for (const auto& entry : fs::directory_iterator(dir_, ec)) {
         const std::string name = entry.path().filename().string();
-        if (entry.is_directory() && name.rfind(".run-", 0) == 0) fs::remove_all(entry.path(), ec);
+        if (entry.is_directory() && name.rfind(".run-", 0) == 0) killed.push_back(entry.path());
     }
+    if (leftovers == Leftovers::adopt && !killed.empty()) {
+        const auto newest = std::max_element(killed.begin(), killed.end(), [](const fs::path& a, const fs::path& b) {
+            std::error_code e;
+            return fs::last_write_time(a, e) < fs::last_write_time(b, e);
+        });
+        staging_ = *newest;
+        killed.erase(newest);
+        adopted_ = true;
+    }
+    for (const auto& k : killed) fs::remove_all(k, ec);
     for (const auto& entry : fs::recursive_directory_iterator(dir_, ec))
         if (entry.is_regular_file() && entry.path().extension() == ".partial") fs::remove(entry.path(), ec);
+    if (adopted_) return;
 
     std::random_device rd;
     staging_ = dir_ / (".run-" + std::to_string(::getpid()) + "-" + std::to_string(rd() % 1000000));
@@ -116,7 +129,7 @@ RunFolder::RunFolder(fs::path dir, std::string program) : dir_(std::move(dir)), 
 }
 
 RunFolder::~RunFolder() {
-    if (!committed_) {
+    if (!committed_ && !adopted_) {
         std::error_code ec;
         fs::remove_all(staging_, ec);
     }
