@@ -193,6 +193,7 @@ int main(int argc, char** argv) {
         LLVMFuzzerTestOneInput(corpus.back().data(), corpus.back().size());
     }
     std::printf("replayed %zu inputs without a crash\n", files.size());
+    std::fflush(stdout);  // before a mutated input may crash the process
     if (files.empty()) return 1;
     if (mutations <= 0) return 0;
 

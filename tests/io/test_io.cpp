@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -183,6 +184,37 @@ TEST(RunFolder, RefusesAConcurrentRunAndCleansKilledRuns) {
         EXPECT_FALSE(fs::exists(dir / "frequencies.csv.999999-0.partial"));
     }
     EXPECT_TRUE(files_in(dir).empty());
+}
+
+TEST(RunFolder, AResumedRunAdoptsTheKilledRunsStagingFolder) {
+    const auto dir = scratch("run_folder_adopt");
+    // Two killed runs' staging folders (the newer one is the run to resume) and a temporary.
+    fs::create_directories(dir / ".run-999998-1");
+    io::write_text_file(dir / ".run-999998-1" / "old-restart-1.h5", "older");
+    fs::last_write_time(dir / ".run-999998-1", fs::file_time_type::clock::now() - std::chrono::hours(1));
+    fs::create_directories(dir / ".run-999999-2");
+    io::write_text_file(dir / ".run-999999-2" / "bar-restart-7.h5", "dump");
+    io::write_text_file(dir / ".run-999999-2" / "results_0000.vtu.999999-0.partial", "half");
+    {  // adopted, then failing again: kept for the next resume
+        io::RunFolder run(dir, "test", io::RunFolder::Leftovers::adopt);
+        EXPECT_TRUE(run.adopted());
+        EXPECT_EQ(run.staging(), dir / ".run-999999-2");
+        EXPECT_EQ(slurp(run.staging() / "bar-restart-7.h5"), "dump");
+        EXPECT_FALSE(fs::exists(dir / ".run-999998-1"));
+        EXPECT_FALSE(fs::exists(dir / ".run-999999-2" / "results_0000.vtu.999999-0.partial"));
+    }
+    EXPECT_TRUE(fs::exists(dir / ".run-999999-2" / "bar-restart-7.h5"));
+    {  // adopted and completed: the killed run's files and the resumed run's are one set
+        io::RunFolder run(dir, "test", io::RunFolder::Leftovers::adopt);
+        ASSERT_TRUE(run.adopted());
+        io::write_text_file(run.staging() / "bar-restart-9.h5", "dump 2");
+        run.commit();
+    }
+    EXPECT_EQ(files_in(dir), (std::vector<std::string>{"bar-restart-7.h5", "bar-restart-9.h5", "manifest.txt"}));
+    {  // nothing to adopt: a fresh staging folder
+        io::RunFolder run(dir, "test", io::RunFolder::Leftovers::adopt);
+        EXPECT_FALSE(run.adopted());
+    }
 }
 
 TEST(RunFolder, AnUnwritableFolderIsRefusedBeforeTheRun) {
