@@ -2,9 +2,10 @@
 """A killed fem-explicit run resumes where it was (issue 14 item 6), tested on the real program.
 
 A small explicit case with restart_interval runs once uninterrupted (the reference). The same case
-is started into another folder and killed with SIGKILL as soon as its first restart dump exists;
-nothing may then be under a final name (the dumps are in the run's staging folder). `fem-explicit
-case.toml --output DIR --resume` continues from the last dump and its results must equal the
+is started into another folder and killed with SIGKILL as soon as its first restart dump exists,
+resumed with `fem-explicit case.toml --output DIR --resume` and killed again after its next dump;
+nothing may then be under a final name (the dumps are in the run's staging folder). A last
+`--resume` continues from the last dump to the end, and its results must equal the
 reference byte for byte: histories.h5 / .dat, energies.dat, von_mises.dat, the VTU series and its
 .pvd, the same file list and manifest; run.json equal but for wall-clock figures. Restart dumps are
 compared by name only (each records its run's staging folder path). --resume with nothing to resume
@@ -20,36 +21,14 @@ import subprocess
 import sys
 import time
 
-CASE = """# A steel bar struck at x = 0 (tests/explicit_case/cases/bar_wave.toml, finer and longer)
-[control]
-end_time = 1.6e-3
-threads = 1
-restart_interval = 3.0e-4
-
-[output]
-interval = 1.0e-5
-vtu_interval = 4.0e-4
-[[output.node]]
-name = "free_end"
-set = "x1-bar"
-
-[[material]]
-name = "steel"
-E = 210e9
-nu = 0.3
-rho = 7800.0
-
-[[part]]
-name = "bar"
-material = "steel"
-mesh = "box"
-size = [1.0, 0.02, 0.02]
-elements = [200, 2, 2]
-
-[[boundary]]
-set = "x0-bar"
-velocity = [1.0, 0.0, 0.0]
-"""
+# The case: tests/explicit_case/cases/bar_wave.toml (a struck steel bar), longer and finer, with
+# restart dumps and a VTU series. Each edit must apply exactly once.
+CASE_EDITS = [
+    ("end_time = 4.0e-4 ", "end_time = 1.6e-3\nrestart_interval = 3.0e-4 "),
+    ("interval = 2.0e-6", "interval = 1.0e-5\nvtu_interval = 4.0e-4"),
+    ("nu = 0.0", "nu = 0.3"),
+    ("elements = [100, 1, 1]", "elements = [200, 2, 2]"),
+]
 
 # run.json keys that measure the machine, not the result.
 WALL_CLOCK = ("wall_s", "timing_s", "element_cycles_per_s")
@@ -86,13 +65,45 @@ def without_wall_clock(value):
     return value
 
 
+def dumps_in_staging(folder):
+    """The restart dumps in the staging folders of folder (a live or killed run's)."""
+    found = []
+    if os.path.isdir(folder):
+        for d in os.listdir(folder):
+            if d.startswith(".run-") and os.path.isdir(os.path.join(folder, d)):
+                found += [f for f in os.listdir(os.path.join(folder, d)) if "-restart-" in f and f.endswith(".h5")]
+    return sorted(found)
+
+
+def kill_after_dumps(command, folder, count):
+    """Starts command, kills it with SIGKILL once count dumps are in folder's staging folder."""
+    run = subprocess.Popen(command, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    while run.poll() is None and len(dumps_in_staging(folder)) < count:
+        time.sleep(0.002)
+    if run.poll() is None:
+        os.kill(run.pid, signal.SIGKILL)
+    status = run.wait()
+    if status != -signal.SIGKILL:
+        fail(f"{command} ended (status {status}) before it could be killed after dump {count}: make the case longer")
+        return False
+    print(f"killed after {dumps_in_staging(folder)}")
+    return True
+
+
 def main():
     program, work = sys.argv[1], sys.argv[2]
     shutil.rmtree(work, ignore_errors=True)
     os.makedirs(work)
+    with open(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "explicit_case", "cases", "bar_wave.toml")) as f:
+        text = f.read()
+    for old, new in CASE_EDITS:
+        if text.count(old) != 1:
+            fail(f"bar_wave.toml no longer holds '{old}' once: update CASE_EDITS")
+            return
+        text = text.replace(old, new)
     case = os.path.join(work, "bar.toml")
     with open(case, "w") as f:
-        f.write(CASE)
+        f.write(text)
 
     ref = os.path.join(work, "reference")
     t0 = time.monotonic()
@@ -108,35 +119,28 @@ def main():
     if refused.returncode != 2 or "no killed run to resume" not in refused.stderr:
         fail(f"--resume into a folder without a killed run: exit {refused.returncode}, {refused.stderr!r}")
 
-    # The run to kill: SIGKILL as soon as its first restart dump is complete in its staging folder.
+    # The run to kill: SIGKILL as soon as its first restart dump is complete in its staging folder;
+    # resumed, killed again after its next dump; resumed again to the end.
     out = os.path.join(work, "out")
-    run = subprocess.Popen([program, case, "--output", out, "--quiet"], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-    dump = None
-    while dump is None and run.poll() is None:
-        if os.path.isdir(out):
-            for d in os.listdir(out):
-                if d.startswith(".run-") and os.path.isdir(os.path.join(out, d)):
-                    dumps = [f for f in os.listdir(os.path.join(out, d)) if "-restart-" in f and f.endswith(".h5")]
-                    if dumps:
-                        dump = dumps[0]
-        time.sleep(0.002)
-    os.kill(run.pid, signal.SIGKILL) if run.poll() is None else None
-    status = run.wait()
-    if status != -signal.SIGKILL:
-        fail(f"the run ended (status {status}) before it could be killed after its first dump: make the case longer")
+    if not kill_after_dumps([program, case, "--output", out, "--quiet"], out, 1):
         return
-    print(f"killed after the dump {dump}")
     left = visible_files(out)
     if left:
         fail(f"the killed run left files under final names: {left}")
+    if not kill_after_dumps([program, case, "--output", out, "--quiet", "--resume"], out, 2):
+        return
+    killed_at = dumps_in_staging(out)  # the last one is where the run must resume
+    left = visible_files(out)
+    if left:
+        fail(f"the killed resumed run left files under final names: {left}")
 
     # Resumed with the same command plus --resume.
     resumed = subprocess.run([program, case, "--output", out, "--resume"], capture_output=True, text=True)
     if resumed.returncode != 0:
         fail("the resumed run failed:\n" + resumed.stdout + resumed.stderr)
         return
-    if "resuming from" not in resumed.stderr:
-        fail("the resumed run does not say which dump it resumed from:\n" + resumed.stderr)
+    if "resuming from" not in resumed.stderr or killed_at[-1] not in resumed.stderr:
+        fail(f"the resumed run does not say it resumed from the last dump {killed_at[-1]}:\n" + resumed.stderr)
     files, ref_files = visible_files(out), visible_files(ref)
     if files != ref_files:
         fail(f"the resumed set's files {files} differ from the uninterrupted run's {ref_files}")
@@ -166,6 +170,7 @@ def main():
     if run.wait() == -signal.SIGKILL and not any(
         "-restart-" in f for _, _, fs in os.walk(early) for f in fs
     ):
+        print("killed before its first dump: --resume refused")
         refused = subprocess.run([program, case, "--output", early, "--resume", "--quiet"], capture_output=True, text=True)
         if refused.returncode != 2 or "wrote no restart dump" not in refused.stderr:
             fail(f"--resume after a kill before the first dump: exit {refused.returncode}, {refused.stderr!r}")
