@@ -232,8 +232,9 @@ struct CaseOutcome {
 /// fem::Interrupted is thrown.
 /// resume (fem-explicit --resume): continue the run that was killed (SIGKILL, a crash, a power cut)
 /// in c.output.folder from the last restart dump it wrote, in its staging folder
-/// (io::RunFolder::Leftovers::adopt); the set then equals an uninterrupted run's. InputError when the
-/// folder holds no killed run or its run wrote no dump, and for a case with [[phase]]s.
+/// (io::RunFolder::Leftovers::adopt); the set then equals an uninterrupted run's. With [[phase]]s the
+/// phases it completed are kept and the one it was in continues. InputError when the folder holds no
+/// killed run or its run wrote no dump.
 CaseOutcome run_case(const ExplicitCase& c, bool quiet = false, bool resume = false);
 
 }  // namespace fem::explicit_case

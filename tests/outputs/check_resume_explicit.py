@@ -5,11 +5,12 @@ A small explicit case with restart_interval runs once uninterrupted (the referen
 is started into another folder and killed with SIGKILL as soon as its first restart dump exists,
 resumed with `fem-explicit case.toml --output DIR --resume` and killed again after its next dump;
 nothing may then be under a final name (the dumps are in the run's staging folder). A last
-`--resume` continues from the last dump to the end, and its results must equal the
-reference byte for byte: histories.h5 / .dat, energies.dat, von_mises.dat, the VTU series and its
-.pvd, the same file list and manifest; run.json equal but for wall-clock figures. Restart dumps are
-compared by name only (each records its run's staging folder path). --resume with nothing to resume
-is refused (exit 2) with a message that says why.
+`--resume` continues from the last dump to the end, and its results must equal the reference byte
+for byte. The same case in two [[phase]]s is killed in its second phase and resumed. Compared:
+histories.h5 / .dat, energies.dat, von_mises.dat, the VTU series and its .pvd byte for byte, the
+same file list and manifest, run.json equal but for wall-clock figures; restart dumps by name only
+(each records its run's staging folder path). --resume with nothing to resume is refused (exit 2)
+with a message that says why.
 
 usage: check_resume_explicit.py FEM_EXPLICIT WORK_DIR
 """
@@ -71,7 +72,8 @@ def dumps_in_staging(folder):
     if os.path.isdir(folder):
         for d in os.listdir(folder):
             if d.startswith(".run-") and os.path.isdir(os.path.join(folder, d)):
-                found += [f for f in os.listdir(os.path.join(folder, d)) if "-restart-" in f and f.endswith(".h5")]
+                for _, _, files in os.walk(os.path.join(folder, d)):  # a phased case: one folder a phase
+                    found += [f for f in files if "-restart-" in f and f.endswith(".h5")]
     return sorted(found)
 
 
@@ -104,14 +106,27 @@ def main():
     case = os.path.join(work, "bar.toml")
     with open(case, "w") as f:
         f.write(text)
+    if not check_resume(program, os.path.join(work, "one"), case, [1, 2]):
+        return
+    # The same in two phases (the hand's grasp-then-flip restart): phase a ends at 7e-4 s with its
+    # third dump; killed after the fourth (phase b's first), phase a is taken as the killed run
+    # completed it and phase b continues from its own dump.
+    phased = os.path.join(work, "bar-phases.toml")
+    with open(phased, "w") as f:
+        f.write(text + '\n[[phase]]\nname = "a"\n[[phase]]\nname = "b"\nstart_time = 7.0e-4\n')
+    check_resume(program, os.path.join(work, "phases"), phased, [4])
 
+
+def check_resume(program, work, case, kills):
+    """Runs case uninterrupted and killed after each count of dumps in kills (resuming after each
+    kill but the first), then resumed to the end; the results must be the uninterrupted run's."""
     ref = os.path.join(work, "reference")
     t0 = time.monotonic()
     done = subprocess.run([program, case, "--output", ref, "--quiet"], capture_output=True, text=True)
     seconds = time.monotonic() - t0
     if done.returncode != 0:
         fail("the reference run failed:\n" + done.stdout + done.stderr)
-        return
+        return False
     print(f"reference run: {seconds:.2f} s")
 
     # Refused: nothing to resume (a complete run leaves no killed run behind).
@@ -119,26 +134,22 @@ def main():
     if refused.returncode != 2 or "no killed run to resume" not in refused.stderr:
         fail(f"--resume into a folder without a killed run: exit {refused.returncode}, {refused.stderr!r}")
 
-    # The run to kill: SIGKILL as soon as its first restart dump is complete in its staging folder;
-    # resumed, killed again after its next dump; resumed again to the end.
+    # The run to kill: SIGKILL as soon as its kills[0]-th restart dump is complete in its staging
+    # folder; resumed and killed again after kills[1] dumps, and so on; resumed to the end.
     out = os.path.join(work, "out")
-    if not kill_after_dumps([program, case, "--output", out, "--quiet"], out, 1):
-        return
-    left = visible_files(out)
-    if left:
-        fail(f"the killed run left files under final names: {left}")
-    if not kill_after_dumps([program, case, "--output", out, "--quiet", "--resume"], out, 2):
-        return
+    for k, count in enumerate(kills):
+        if not kill_after_dumps([program, case, "--output", out, "--quiet"] + (["--resume"] if k else []), out, count):
+            return False
+        left = visible_files(out)
+        if left:
+            fail(f"the killed run left files under final names: {left}")
     killed_at = dumps_in_staging(out)  # the last one is where the run must resume
-    left = visible_files(out)
-    if left:
-        fail(f"the killed resumed run left files under final names: {left}")
 
     # Resumed with the same command plus --resume.
     resumed = subprocess.run([program, case, "--output", out, "--resume"], capture_output=True, text=True)
     if resumed.returncode != 0:
         fail("the resumed run failed:\n" + resumed.stdout + resumed.stderr)
-        return
+        return False
     if "resuming from" not in resumed.stderr or killed_at[-1] not in resumed.stderr:
         fail(f"the resumed run does not say it resumed from the last dump {killed_at[-1]}:\n" + resumed.stderr)
     files, ref_files = visible_files(out), visible_files(ref)
@@ -149,14 +160,15 @@ def main():
         fail(f"the resumed run left {leftovers}")
     compared = 0
     for f in ref_files:
-        if f in ("summary.txt", "run.json") or "-restart-" in f or f not in files:
+        if os.path.basename(f) in ("summary.txt", "run.json") or "-restart-" in f or f not in files:
             continue
         compared += 1
         if read(os.path.join(out, f)) != read(os.path.join(ref, f)):
             fail(f"{f} of the resumed run differs from the uninterrupted run's")
-    with open(os.path.join(out, "run.json")) as a, open(os.path.join(ref, "run.json")) as b:
-        if without_wall_clock(json.load(a)) != without_wall_clock(json.load(b)):
-            fail("run.json of the resumed run differs from the uninterrupted run's (wall-clock figures aside)")
+    for f in [f for f in ref_files if os.path.basename(f) == "run.json"]:
+        with open(os.path.join(out, f)) as a, open(os.path.join(ref, f)) as b:
+            if without_wall_clock(json.load(a)) != without_wall_clock(json.load(b)):
+                fail(f"{f} of the resumed run differs from the uninterrupted run's (wall-clock figures aside)")
     print(f"resumed: {compared} files byte-identical to the uninterrupted run's, run.json equal")
     if compared < 6:
         fail(f"only {compared} files compared: the case no longer writes its histories and VTU series")
@@ -174,6 +186,7 @@ def main():
         refused = subprocess.run([program, case, "--output", early, "--resume", "--quiet"], capture_output=True, text=True)
         if refused.returncode != 2 or "wrote no restart dump" not in refused.stderr:
             fail(f"--resume after a kill before the first dump: exit {refused.returncode}, {refused.stderr!r}")
+    return True
 
 
 if __name__ == "__main__":
