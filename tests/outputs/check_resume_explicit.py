@@ -81,7 +81,7 @@ def kill_after_dumps(command, folder, count):
     """Starts command, kills it with SIGKILL once count dumps are in folder's staging folder."""
     run = subprocess.Popen(command, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     while run.poll() is None and len(dumps_in_staging(folder)) < count:
-        time.sleep(0.002)
+        time.sleep(0.005)
     if run.poll() is None:
         os.kill(run.pid, signal.SIGKILL)
     status = run.wait()
@@ -114,12 +114,13 @@ def main():
     phased = os.path.join(work, "bar-phases.toml")
     with open(phased, "w") as f:
         f.write(text + '\n[[phase]]\nname = "a"\n[[phase]]\nname = "b"\nstart_time = 7.0e-4\n')
-    check_resume(program, os.path.join(work, "phases"), phased, [4])
+    check_resume(program, os.path.join(work, "phases"), phased, [4], refusals=False)
 
 
-def check_resume(program, work, case, kills):
+def check_resume(program, work, case, kills, refusals=True):
     """Runs case uninterrupted and killed after each count of dumps in kills (resuming after each
-    kill but the first), then resumed to the end; the results must be the uninterrupted run's."""
+    kill but the first), then resumed to the end; the results must be the uninterrupted run's.
+    refusals: also --resume with nothing to resume, and after a kill before the first dump."""
     ref = os.path.join(work, "reference")
     t0 = time.monotonic()
     done = subprocess.run([program, case, "--output", ref, "--quiet"], capture_output=True, text=True)
@@ -130,9 +131,10 @@ def check_resume(program, work, case, kills):
     print(f"reference run: {seconds:.2f} s")
 
     # Refused: nothing to resume (a complete run leaves no killed run behind).
-    refused = subprocess.run([program, case, "--output", ref, "--resume", "--quiet"], capture_output=True, text=True)
-    if refused.returncode != 2 or "no killed run to resume" not in refused.stderr:
-        fail(f"--resume into a folder without a killed run: exit {refused.returncode}, {refused.stderr!r}")
+    if refusals:
+        refused = subprocess.run([program, case, "--output", ref, "--resume", "--quiet"], capture_output=True, text=True)
+        if refused.returncode != 2 or "no killed run to resume" not in refused.stderr:
+            fail(f"--resume into a folder without a killed run: exit {refused.returncode}, {refused.stderr!r}")
 
     # The run to kill: SIGKILL as soon as its kills[0]-th restart dump is complete in its staging
     # folder; resumed and killed again after kills[1] dumps, and so on; resumed to the end.
@@ -173,6 +175,8 @@ def check_resume(program, work, case, kills):
     if compared < 6:
         fail(f"only {compared} files compared: the case no longer writes its histories and VTU series")
 
+    if not refusals:
+        return True
     # Refused: the killed run had written no dump yet.
     early = os.path.join(work, "early")
     run = subprocess.Popen([program, case, "--output", early, "--quiet"], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
@@ -192,5 +196,6 @@ def check_resume(program, work, case, kills):
 if __name__ == "__main__":
     main()
     if failures:
-        sys.exit(1)
+        sys.exit(1)  # the work folder stays, to look at
+    shutil.rmtree(sys.argv[2], ignore_errors=True)
     print("ok")
