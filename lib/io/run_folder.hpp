@@ -12,6 +12,7 @@
 //                       refused ("in use by pid N") instead of mixing its files with the first's
 //   .run-<pid>-<rand>/  the staging folder of a live run (removed by the next run if it was killed)
 //   manifest.txt        the files of the last completed run, one per line
+//   .manifest-pending   only while (or after a kill during) commit(): the files being moved into place
 // commit() moves each staged file into place (rename: a file under its final name is always
 // complete), writes the manifest, then removes files of the previous run's manifest that this run
 // did not write (a rerun with 5 modes after 60 leaves no stale mode files). A run that ends without
@@ -54,6 +55,10 @@ public:
 
     /// The manifest's file name.
     static constexpr const char* manifest_name = "manifest.txt";
+    /// The list of the files commit() is moving into place, written before the first and removed
+    /// after the last: a run killed while committing leaves it, and the next run takes those files
+    /// as stale too (or, adopting the killed run's staging folder, moves them back into it).
+    static constexpr const char* pending_name = ".manifest-pending";
 
 private:
     void release() noexcept;

@@ -217,6 +217,35 @@ TEST(RunFolder, AResumedRunAdoptsTheKilledRunsStagingFolder) {
     }
 }
 
+TEST(RunFolder, ACommitKilledOnTheWayIsRepairedByTheNextRun) {
+    const auto dir = scratch("run_folder_killed_commit");
+    {
+        io::RunFolder run(dir, "test");
+        io::write_text_file(run.staging() / "a.txt", "1");
+        io::write_text_file(run.staging() / "b.txt", "1");
+        run.commit();
+    }
+    EXPECT_FALSE(fs::exists(dir / io::RunFolder::pending_name));
+    // What a run killed in commit() leaves: its list, c.txt already moved into place, b2.txt staged.
+    io::write_text_file(dir / io::RunFolder::pending_name, "# staging folder .run-999999-3\nb2.txt\nc.txt\n");
+    io::write_text_file(dir / "c.txt", "2");
+    fs::create_directories(dir / ".run-999999-3");
+    io::write_text_file(dir / ".run-999999-3" / "b2.txt", "2");
+    {  // resumed: c.txt goes back to the adopted staging folder, which is whole again
+        io::RunFolder run(dir, "test", io::RunFolder::Leftovers::adopt);
+        ASSERT_TRUE(run.adopted());
+        EXPECT_EQ(slurp(run.staging() / "c.txt"), "2");
+        EXPECT_FALSE(fs::exists(dir / "c.txt"));
+        io::write_text_file(dir / "c.txt", "2");  // as if the resume had not happened (the run failed)
+    }
+    {  // a fresh run that writes only a.txt: b.txt (previous set) and c.txt (the killed commit's) are stale
+        io::RunFolder run(dir, "test");
+        io::write_text_file(run.staging() / "a.txt", "3");
+        run.commit();
+    }
+    EXPECT_EQ(files_in(dir), (std::vector<std::string>{"a.txt", "manifest.txt"}));
+}
+
 TEST(RunFolder, AnUnwritableFolderIsRefusedBeforeTheRun) {
     const auto dir = scratch("run_folder_bad");
     io::write_text_file(dir / "file", "x");

@@ -48,7 +48,7 @@ def visible_files(folder):
     for root, dirs, files in os.walk(folder):
         dirs[:] = [d for d in dirs if not d.startswith(".run-")]
         for f in files:
-            if f != ".lock" and not f.endswith(".partial"):
+            if f not in (".lock", ".manifest-pending") and not f.endswith(".partial"):
                 found.append(os.path.relpath(os.path.join(root, f), folder))
     return sorted(found)
 
