@@ -965,9 +965,10 @@ int main(int argc, char** argv) {
             return run_program("chicken_shackling --shackle", [&] {
                 const int threads = par::threads();  // the caller's, before Gmsh sets one (README, Step 4)
                 const chicken::Chicken bird = chicken::table_5_3_chicken();
+                const double density = chicken::density_for_mass(bird);  // Gmsh too
                 const ShackleInput input(bird);
                 par::set_threads(threads);
-                const ShackleRun r = run_shackle(input, chicken::density_for_mass(bird), rotating, end,
+                const ShackleRun r = run_shackle(input, density, rotating, end,
                                                   fmt::format("shackle-{}.pvd", rotating ? "rotating" : "inverting"), scaling, ramp, end);
                 fmt::print("{}\n", r.summary.text());
                 write_shackle_dat(fmt::format("shackle-{}.dat", rotating ? "rotating" : "inverting"), r);
