@@ -919,7 +919,7 @@ void run(check::Study& study) {
             // The thesis's conclusion (Sec 5.4.2): the Lagrange model's response is larger than the FE
             // model's. The one FE number printed is the rotating case's largest bird-shackle relative
             // displacement, 9.5 cm at 0.12 s (Fig 5-20): judge our Lagrange model's relative displacement
-            // against it until our own shell-shackle FE model exists (issue 12, Step 4).
+            // against it; and, like with like, against our own FE shackle model (Step 4).
             if (rotating) {
                 constexpr double kThesisFeRelative = 0.095;  // m, Sec 5.4.2 text on Fig 5-20
                 study.trend_holds("fig-5-24/lagrange-exceeds-fe", std::abs(nominal.relative_peak) > kThesisFeRelative,
