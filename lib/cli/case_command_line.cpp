@@ -8,18 +8,21 @@
 namespace fem::cli {
 
 std::optional<CaseCommandLine> read_case_command_line(int argc, char** argv, std::string_view usage, std::string_view help,
-                                                      bool with_end_time) {
+                                                      bool explicit_run) {
     CaseCommandLine c;
-    input::Arguments args(argc, argv, with_end_time ? std::initializer_list<std::string_view>{"--help", "--output", "--quiet", "--end-time"}
-                                                    : std::initializer_list<std::string_view>{"--help", "--output", "--quiet"});
+    input::Arguments args(argc, argv,
+                          explicit_run ? std::initializer_list<std::string_view>{"--help", "--output", "--quiet", "--end-time", "--resume"}
+                                       : std::initializer_list<std::string_view>{"--help", "--output", "--quiet"});
     while (args.next()) {
         if (args.is("--help") || args.is("-h")) {
             std::cout << "usage: " << usage << "\n" << help;
             return std::nullopt;
         } else if (args.is("--output")) {
             c.output = args.value();
-        } else if (with_end_time && args.is("--end-time")) {
+        } else if (explicit_run && args.is("--end-time")) {
             c.end_time = args.real(input::Range::positive());
+        } else if (explicit_run && args.is("--resume")) {
+            c.resume = true;
         } else if (args.is("--quiet")) {
             c.quiet = true;
         } else {

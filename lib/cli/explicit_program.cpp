@@ -1,10 +1,12 @@
 // fem-explicit: the explicit solver (thesis Sec 2.3, Ch 4) on a TOML case file
 // (lib/explicit_case/case_file.hpp; every key: lib/explicit_case/CASE_FILE.md).
 //
-//   fem-explicit case.toml [--output DIR] [--end-time T] [--quiet]
+//   fem-explicit case.toml [--output DIR] [--end-time T] [--resume] [--quiet]
 //
 // --end-time T ends the run at T seconds instead of [control] end_time (a short look at a long case,
 // e.g. the CTest smoke runs of the Ch 4 studies' case files; phases starting at or after T are left out).
+// --resume continues a run that was killed (SIGKILL, a crash) in DIR from the last restart dump it
+// wrote (restart_interval / restart_times), as LS-DYNA's `r=d3dump01`: the same command plus --resume.
 // Writes DIR/summary.txt (run summary: element-cycles/s, timing table, energy balance, health),
 // run.json, histories.h5 and histories.dat / energies.dat, VTU/PVD when asked, restart dumps when
 // asked, as one io::RunFolder set. Progress on stderr (--quiet: none); Ctrl-C stops after the
@@ -28,16 +30,17 @@ namespace fem::cli {
 int explicit_program(int argc, char** argv) {
     return fem::run_program("fem-explicit", [&]() {
         const auto line = read_case_command_line(
-            argc, argv, "fem-explicit CASE.toml [--output DIR] [--end-time T] [--quiet]",
+            argc, argv, "fem-explicit CASE.toml [--output DIR] [--end-time T] [--resume] [--quiet]",
             "Explicit dynamics (central differences, penalty contact, rigid parts) of a TOML case\n"
             "file; every key: lib/explicit_case/CASE_FILE.md. Writes summary.txt, run.json,\n"
             "histories.h5, histories.dat, energies.dat (and VTU/PVD, restart dumps) to DIR.\n"
-            "--end-time T: end the run at T seconds instead of [control] end_time.\n", true);
+            "--end-time T: end the run at T seconds instead of [control] end_time.\n"
+            "--resume: continue the run killed in DIR from the last restart dump it wrote.\n", true);
         if (!line) return 0;  // --help
         auto c = fem::explicit_case::read_case(line->case_path);
         if (!line->output.empty()) c.output.folder = line->output;
         if (line->end_time) fem::explicit_case::cut_at(c, *line->end_time);
-        const auto outcome = fem::explicit_case::run_case(c, line->quiet);
+        const auto outcome = fem::explicit_case::run_case(c, line->quiet, line->resume);
         std::cout << outcome.summary << std::flush;
         if (outcome.healthy()) return 0;
         for (const std::string& verdict : outcome.unhealthy) {  // "FAIL   run health <run>: ..."

@@ -1138,7 +1138,8 @@ void ExplicitSolver::write_restart(const std::filesystem::path& path) const {
     if (pvd_)
         for (const auto& [t, f] : pvd_->entries()) pvd_t.push_back(t), pvd_f.push_back(f);
     w.write("pvd/time", pvd_t);
-    w.attribute("/", "pvd_path", opt_.pvd_path.string());
+    // absolute: a run resumed from another working folder still finds its series the same file
+    w.attribute("/", "pvd_path", opt_.pvd_path.empty() ? std::string() : std::filesystem::absolute(opt_.pvd_path).string());
     w.attribute("/", "pvd_files", joined(pvd_f));
     // The groups' and force providers' own state.
     for (std::size_t g = 0; g < model_.groups().size(); ++g) model_.groups()[g]->save_state(w, fmt::format("groups/{}/", g));
@@ -1301,7 +1302,8 @@ void ExplicitSolver::restore(const std::filesystem::path& path) {
     }
     // The VTU series continues when it is the same file.
     if (pvd_) {
-        if (r.attribute_string("/", "pvd_path") == opt_.pvd_path.string()) {
+        const std::filesystem::path dumped = r.attribute_string("/", "pvd_path");
+        if (!dumped.empty() && std::filesystem::absolute(dumped) == std::filesystem::absolute(opt_.pvd_path)) {
             const auto times = r.read("pvd/time");
             const auto files = split_lines(r.attribute_string("/", "pvd_files"));
             std::vector<std::pair<double, std::string>> entries;

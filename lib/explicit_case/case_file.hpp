@@ -242,6 +242,11 @@ struct CaseOutcome {
 /// first restarting from the dump its predecessor wrote at its start, and a summary.txt of all.
 /// quiet: no progress line. Ctrl-C: the state reached is written, marked partial (PARTIAL.txt), and
 /// fem::Interrupted is thrown.
-CaseOutcome run_case(const ExplicitCase& c, bool quiet = false);
+/// resume (fem-explicit --resume): continue the run that was killed (SIGKILL, a crash, a power cut)
+/// in c.output.folder from the last restart dump it wrote, in its staging folder
+/// (io::RunFolder::Leftovers::adopt); the set then equals an uninterrupted run's. With [[phase]]s the
+/// phases it completed are kept and the one it was in continues. InputError when the folder holds no
+/// killed run or its run wrote no dump.
+CaseOutcome run_case(const ExplicitCase& c, bool quiet = false, bool resume = false);
 
 }  // namespace fem::explicit_case

@@ -2,6 +2,8 @@
 // other part by part) and running it (run_case) into an io::RunFolder.
 #include <algorithm>
 #include <chrono>
+#include <fstream>
+#include <iterator>
 #include <iostream>
 #include <set>
 
@@ -350,28 +352,85 @@ std::string run_into(const ExplicitCase& c, const std::filesystem::path& dir, co
 
 }  // namespace
 
-CaseOutcome run_case(const ExplicitCase& c, bool quiet) {
+namespace {
+
+// The restart dump a resumed run (or phase `name`) starts from: the last one the killed run wrote in
+// `dir`, in its staging folder, which `out` adopted (LS-DYNA's `r=d3dump01`, found by itself).
+std::filesystem::path resume_point(const ExplicitCase& c, const io::RunFolder& out, const std::filesystem::path& dir,
+                                   const std::string& name) {
+    const std::string folder = c.output.folder.string();
+    if (!out.adopted())
+        throw InputError(fmt::format("--resume: no killed run to resume in '{}' (a run that is killed leaves its "
+                                     "files, restart dumps included, in a '.run-*' folder there; there is none): "
+                                     "run the case without --resume",
+                                     folder));
+    try {
+        return ExplicitSolver::latest_restart(dir, name);
+    } catch (const InputError&) {
+        throw InputError(fmt::format("--resume: the run killed in '{}' wrote no restart dump of run '{}' before it "
+                                     "ended ([control] restart_interval or restart_times make it write them): run "
+                                     "the case without --resume",
+                                     folder, name));
+    }
+}
+
+}  // namespace
+
+CaseOutcome run_case(const ExplicitCase& c, bool quiet, bool resume) {
     // The output folder is checked (writable, not in use) before the model is built; the run's files
     // replace the previous set only when all are written.
-    io::RunFolder out(c.output.folder, "fem-explicit");
+    io::RunFolder out(c.output.folder, "fem-explicit", resume ? io::RunFolder::Leftovers::adopt : io::RunFolder::Leftovers::remove);
     if (c.control.threads > 0) par::set_threads(c.control.threads);
     std::string text, interrupted;
     std::vector<std::string> unhealthy;
     std::vector<std::filesystem::path> dumps;
-    if (c.phases.empty()) {
+    if (c.phases.empty() && resume) {
+        ExplicitCase resumed = c;
+        resumed.control.restart_from = resume_point(c, out, out.staging(), c.control.name);
+        if (!quiet) std::cerr << "fem-explicit: resuming from " << resumed.control.restart_from.string() << '\n';
+        text = run_into(resumed, out.staging(), c.output.folder, quiet, dumps, unhealthy, interrupted);
+    } else if (c.phases.empty()) {
         text = run_into(c, out.staging(), c.output.folder, quiet, dumps, unhealthy, interrupted);
     } else {
         // Phase k runs to the next phase's start and writes a dump there; phase k + 1 restarts from it
         // with its own model (objects released), as the thesis's flip restarts from the grasp.
-        for (std::size_t k = 0; k < c.phases.size() && interrupted.empty(); ++k) {
+        // Resumed: the phases the killed run completed are taken as they are (their summary, health
+        // verdict and last dump), the first it did not complete continues from its own last dump.
+        const auto header = [&](std::size_t k, const ExplicitCase& p) {
+            return fmt::format("== phase '{}' ({} to {} s) ==\n", c.phases[k].name, c.phases[k].start, p.control.end_time);
+        };
+        std::size_t first = 0;
+        std::filesystem::path resume_from;
+        for (; resume && first < c.phases.size(); ++first) {
+            const ExplicitCase p = phase_case(c, first);
+            const std::filesystem::path dir = out.staging() / c.phases[first].name;
+            if (!out.adopted() || !std::filesystem::exists(dir / "summary.txt")) {  // run_into writes it last
+                // The first phase the killed run did not complete: from its own last dump, else (killed
+                // before that) from the previous phase's last dump, as an uninterrupted run would.
+                try {
+                    resume_from = resume_point(c, out, dir, p.control.name);
+                } catch (const InputError&) {
+                    if (first == 0 || !out.adopted()) throw;
+                }
+                if (!quiet && !resume_from.empty()) std::cerr << "fem-explicit: resuming from " << resume_from.string() << '\n';
+                break;
+            }
+            std::ifstream summary(dir / "summary.txt"), run(dir / "run.json");
+            text += header(first, p) + std::string((std::istreambuf_iterator<char>(summary)), std::istreambuf_iterator<char>());
+            check::judge_run_health({{p.control.name, nlohmann::json::parse(run)}}, {}, c.source, unhealthy);
+            if (first + 1 < c.phases.size()) dumps.push_back(ExplicitSolver::latest_restart(dir, p.control.name));
+        }
+        for (std::size_t k = first; k < c.phases.size() && interrupted.empty(); ++k) {
             ExplicitCase p = phase_case(c, k);
-            if (k > 0) {
+            if (k == first && !resume_from.empty()) {
+                p.control.restart_from = resume_from;
+            } else if (k > 0) {
                 if (dumps.empty()) throw SolverError(fmt::format("{}: phase '{}' has no dump to start from", c.source, c.phases[k].name));
                 p.control.restart_from = dumps.back();
             }
             if (k + 1 < c.phases.size()) p.control.restart_times.push_back(c.phases[k + 1].start);
             const std::size_t before = dumps.size();
-            text += fmt::format("== phase '{}' ({} to {} s) ==\n", c.phases[k].name, c.phases[k].start, p.control.end_time);
+            text += header(k, p);
             text += run_into(p, out.staging() / c.phases[k].name, c.output.folder / c.phases[k].name, quiet, dumps, unhealthy,
                              interrupted);
             if (k + 1 < c.phases.size() && interrupted.empty() && dumps.size() == before)

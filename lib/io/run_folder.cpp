@@ -23,6 +23,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
+// The pending list's first line: the staging folder whose files it lists.
+const std::string pending_header = "# staging folder ";
+
 [[noreturn]] void cannot_write(const fs::path& dir, const std::string& why) {
     throw InputError("cannot write to the output folder '" + dir.string() + "': " + why);
 }
@@ -54,7 +57,8 @@ bool inside(const fs::path& relative) {
 
 }  // namespace
 
-RunFolder::RunFolder(fs::path dir, std::string program) : dir_(std::move(dir)), program_(std::move(program)) {
+RunFolder::RunFolder(fs::path dir, std::string program, Leftovers leftovers)
+    : dir_(std::move(dir)), program_(std::move(program)) {
     std::error_code ec;
     if (fs::exists(dir_, ec) && !fs::is_directory(dir_, ec)) cannot_write(dir_, "it is a file, not a folder");
     if (!fs::exists(dir_, ec)) {
@@ -98,13 +102,37 @@ RunFolder::RunFolder(fs::path dir, std::string program) : dir_(std::move(dir)), 
     }
 
     // Holding the lock, no live run uses the folder: staging folders and temporaries left by killed
-    // runs can go.
+    // runs can go (the newest staging folder stays when it is to be adopted: the killed run's).
+    std::vector<fs::path> killed;
     for (const auto& entry : fs::directory_iterator(dir_, ec)) {
         const std::string name = entry.path().filename().string();
-        if (entry.is_directory() && name.rfind(".run-", 0) == 0) fs::remove_all(entry.path(), ec);
+        if (entry.is_directory() && name.rfind(".run-", 0) == 0) killed.push_back(entry.path());
     }
+    if (leftovers == Leftovers::adopt && !killed.empty()) {
+        const auto newest = std::max_element(killed.begin(), killed.end(), [](const fs::path& a, const fs::path& b) {
+            std::error_code e;
+            return fs::last_write_time(a, e) < fs::last_write_time(b, e);
+        });
+        staging_ = *newest;
+        killed.erase(newest);
+        adopted_ = true;
+        // Killed while committing: the files it had already moved into place go back to its staging
+        // folder, which is then whole again (the pending list names the staging folder it is of).
+        std::error_code e;
+        std::ifstream pending(dir_ / pending_name);
+        std::string first;
+        std::getline(pending, first);
+        if (first == pending_header + staging_.filename().string())
+            for (const auto& f : read_manifest(dir_ / pending_name))
+                if (inside(f) && !fs::exists(staging_ / f, e) && fs::is_regular_file(dir_ / f, e)) {
+                    fs::create_directories((staging_ / f).parent_path(), e);
+                    fs::rename(dir_ / f, staging_ / f, e);
+                }
+    }
+    for (const auto& k : killed) fs::remove_all(k, ec);
     for (const auto& entry : fs::recursive_directory_iterator(dir_, ec))
         if (entry.is_regular_file() && entry.path().extension() == ".partial") fs::remove(entry.path(), ec);
+    if (adopted_) return;
 
     std::random_device rd;
     staging_ = dir_ / (".run-" + std::to_string(::getpid()) + "-" + std::to_string(rd() % 1000000));
@@ -116,7 +144,7 @@ RunFolder::RunFolder(fs::path dir, std::string program) : dir_(std::move(dir)), 
 }
 
 RunFolder::~RunFolder() {
-    if (!committed_) {
+    if (!committed_ && !adopted_) {
         std::error_code ec;
         fs::remove_all(staging_, ec);
     }
@@ -137,13 +165,18 @@ void RunFolder::release() noexcept {
 void RunFolder::commit() {
     if (committed_) return;
     const std::vector<fs::path> mine = files_under(staging_);
-    const std::vector<fs::path> previous = read_manifest(dir_ / manifest_name);
+    // The previous run's files, and those of a commit killed on the way (its pending list): files it
+    // moved into place that this run does not write are stale too.
+    std::vector<fs::path> previous = read_manifest(dir_ / manifest_name);
+    for (const auto& f : read_manifest(dir_ / pending_name)) previous.push_back(f);
     std::ostringstream manifest;
     manifest << "# The files of the last completed run of " << program_
              << " in this folder; the next run into this folder replaces them.\n";
     for (const auto& f : mine) manifest << f.generic_string() << '\n';
 
-    // Files first (each rename is atomic: a final name always holds a complete file), manifest last.
+    // The list first (a commit killed during the renames is then known to the next run), then the files
+    // (each rename is atomic: a final name always holds a complete file), the manifest last.
+    write_text_file(dir_ / pending_name, pending_header + staging_.filename().string() + "\n" + manifest.str());
     for (const auto& f : mine) {
         const fs::path to = dir_ / f;
         if (f.has_parent_path()) fs::create_directories(dir_ / f.parent_path());
@@ -154,11 +187,12 @@ void RunFolder::commit() {
     const std::set<fs::path> now(mine.begin(), mine.end());
     std::error_code ec;
     for (const auto& f : previous)
-        if (inside(f) && !now.count(f) && f != manifest_name) {
+        if (inside(f) && !now.count(f) && f != manifest_name && f != pending_name) {
             fs::remove(dir_ / f, ec);
             for (fs::path p = f.parent_path(); !p.empty(); p = p.parent_path())  // empty subfolders of stale files
                 if (fs::is_empty(dir_ / p, ec)) fs::remove(dir_ / p, ec);
         }
+    fs::remove(dir_ / pending_name, ec);
     fs::remove_all(staging_, ec);
     committed_ = true;
     release();

@@ -5,7 +5,6 @@
 #include <cmath>
 #include <limits>
 #include <map>
-#include <ranges>
 
 #include <fmt/format.h>
 
@@ -66,21 +65,28 @@ int weld_coincident_nodes(Mesh& mesh, double tol) {
 }
 
 namespace {
-template <class Nodes>
-int nearest_of(const Mesh& mesh, const Vec3& p, const Nodes& nodes) {
+// The candidate at position k is node_at(k); one loop for the candidate list and for the whole mesh
+// (not std::views::iota: clang 14, which builds `make fuzz`, rejects libstdc++ 12's iota_view).
+template <class NodeAt>
+int nearest_of(const Mesh& mesh, const Vec3& p, std::size_t count, NodeAt node_at) {
     int best = -1;
     double d = std::numeric_limits<double>::infinity();
-    for (const int i : nodes)
+    for (std::size_t k = 0; k < count; ++k) {
+        const int i = node_at(k);
         if (const double di = (mesh.nodes.at(i) - p).squaredNorm(); di < d) d = di, best = i;
+    }
     if (best < 0) throw InputError("nearest_node: no node to choose from");
     return best;
 }
 }  // namespace
 
 int nearest_node(const Mesh& mesh, const Vec3& p, std::span<const int> candidates) {
-    return nearest_of(mesh, p, candidates);
+    return nearest_of(mesh, p, candidates.size(), [&](std::size_t k) { return candidates[k]; });
 }
 
-int nearest_node(const Mesh& mesh, const Vec3& p) { return nearest_of(mesh, p, std::views::iota(0, mesh.node_count())); }
+int nearest_node(const Mesh& mesh, const Vec3& p) {
+    return nearest_of(mesh, p, static_cast<std::size_t>(mesh.node_count()),
+                      [](std::size_t k) { return static_cast<int>(k); });
+}
 
 }  // namespace fem

@@ -103,3 +103,12 @@ do for [c in 'rotating inverting'] {
     plot results.'/lagrange-'.c.'-chain.dat' using 1:2:(column(-2)) with linespoints pt 7 ps 0.6 lw 1 lc palette notitle
 }
 unset multiplot
+
+# --- Figs 5-20 / 5-22 of our FE shackle model (Step 4; 5 ms drive ramp, reconstruction 19) ------------
+here = system('dirname '.ARG0)
+dat = results.'/shackle-rotating.dat'; out = figures.'/fig-5-20-fe-rotating-ramp'; case = 'rotating'
+load here.'/shackle.gp'
+reset
+dat = results.'/shackle-inverting.dat'; out = figures.'/fig-5-22-fe-inverting-ramp'; case = 'inverting'
+load here.'/shackle.gp'
+reset

@@ -404,6 +404,17 @@ TEST(ContactPenalty, PairForcesConserveMomentumExactly) {
     EXPECT_LE(M.norm(), offset_moment * (1 + 1e-9) + 1e-13 * scale);
 }
 
+namespace {
+// The probe tests below: part "probe" (rubber) against part "block" (rigid, depth limit 5 cm), the
+// edge tolerance 0.05 of the face size (5 mm on the block's 0.1 m faces) stated, not defaulted.
+ContactInterface probe_against_rigid_block(const Mesh& m, const std::string& name) {
+    ContactOptions o;
+    o.edge_tolerance = 0.05;
+    return ContactInterface(name, ContactSurface::from_part(m, "probe", kRubber),
+                            ContactSurface::rigid_part(m, "block", 0.05), o);
+}
+}  // namespace
+
 // A node beside a thick block, level with its side, just outside its side face but within the
 // edge tolerance of its bottom face (and behind that face's plane by less than the depth limit):
 // it is outside the block and must get no force (the outside veto); moved 0.1 mm into the side
@@ -413,10 +424,8 @@ TEST(ContactPenalty, NodeBesideAThickBlockIsNotCapturedByAFarFace) {
     Mesh probe = box_hex8(0.01, 0.01, 0.01, 1, 1, 1, "probe");
     probe.translate(Vec3(0.1001, 0.05, 0.02));  // 0.1 mm outside the face x = 0.1, 20 mm above z = 0
     m.append(probe);
-    ContactOptions o;
-    o.edge_tolerance = 0.05;  // 5 mm on the 0.1 m faces: the probe is within it for the bottom face
-    ContactInterface ci("probe beside block", ContactSurface::from_part(m, "probe", kRubber),
-                        ContactSurface::rigid_part(m, "block", 0.05), o);
+    // The edge tolerance (5 mm on the 0.1 m faces) puts the probe within the bottom face's.
+    ContactInterface ci = probe_against_rigid_block(m, "probe beside block");
     std::vector<Vec3> f(m.node_count(), Vec3::Zero());
     ci.evaluate(m.nodes, {}, 0.0, 0.0, f);
     EXPECT_TRUE(ci.contacts().empty());
@@ -441,10 +450,7 @@ TEST(ContactPenalty, NodeBesideAConvexEdgeIsNotCapturedByAFarFace) {
     Mesh probe = box_hex8(0.01, 0.01, 0.01, 1, 1, 1, "probe");
     probe.translate(Vec3(0.1005, -0.011, 0.02));  // x-min face 0.5 mm outside x = 0.1; y-max face 1 mm below y = 0
     m.append(probe);
-    ContactOptions o;
-    o.edge_tolerance = 0.05;
-    ContactInterface ci("probe beside edge", ContactSurface::from_part(m, "probe", kRubber),
-                        ContactSurface::rigid_part(m, "block", 0.05), o);
+    ContactInterface ci = probe_against_rigid_block(m, "probe beside edge");
     std::vector<Vec3> f(m.node_count(), Vec3::Zero());
     ci.evaluate(m.nodes, {}, 0.0, 0.0, f);
     EXPECT_TRUE(ci.contacts().empty());
@@ -464,10 +470,7 @@ TEST(ContactPenalty, NodeInADentIsKeptByTheFaceItPenetrates) {
     Mesh probe = box_hex8(0.002, 0.002, 0.002, 1, 1, 1, "probe");
     probe.translate(Vec3(0.0965, 0.049, 0.0799));
     m.append(probe);
-    ContactOptions o;
-    o.edge_tolerance = 0.05;
-    ContactInterface ci("probe in a dent", ContactSurface::from_part(m, "probe", kRubber),
-                        ContactSurface::rigid_part(m, "block", 0.05), o);
+    ContactInterface ci = probe_against_rigid_block(m, "probe in a dent");
     std::vector<Vec3> f(m.node_count(), Vec3::Zero());
     ci.evaluate(m.nodes, {}, 0.0, 0.0, f);
     ASSERT_EQ(ci.contacts().size(), 4u);  // the probe's four bottom nodes

@@ -1,7 +1,10 @@
 // Determinism: the same inputs give the same results whatever the thread count and run after run.
 // finger_twist (two explicit hexahedral finger runs, the shortest explicit study) runs with
-// OMP_NUM_THREADS = 1, 2 and 2 again; checks.json and the HDF5 histories must be byte-identical and
-// runs.json identical apart from its timings (wall time, element-cycles per second, threads).
+// OMP_NUM_THREADS = 1 and 2; checks.json and the HDF5 histories must be byte-identical and runs.json
+// identical apart from its timings (wall time, element-cycles per second, threads). Two runs are also
+// run after run; a third (2 threads again, 1/3 of this test's ~100 s) was dropped to pay for the fuzz
+// runs in CTest: run-after-run identity is tested besides by outputs_killed_run (fem-modal, HDF5
+// included) and outputs_killed_explicit_resumes (an explicit case run twice, byte for byte).
 #include <gtest/gtest.h>
 
 #include <cstdlib>
@@ -44,12 +47,12 @@ nlohmann::json runs_without_timings(const fs::path& file) {
 
 }  // namespace
 
-TEST(Determinism, OneAndTwoThreadsAndRunAfterRun) {
+TEST(Determinism, OneAndTwoThreadsGiveTheSameBytes) {
     fs::remove_all(g_work);
     fs::create_directories(g_work);
-    const fs::path one = g_work / "threads-1", two = g_work / "threads-2", again = g_work / "threads-2-again";
+    const fs::path one = g_work / "threads-1", two = g_work / "threads-2";
     // The study's verdicts are its own test (CTest finger_twist); here it only has to run to its end.
-    for (const auto& [threads, dir] : {std::pair{1, one}, {2, two}, {2, again}}) {
+    for (const auto& [threads, dir] : {std::pair{1, one}, {2, two}}) {
         run_study(threads, dir);
         ASSERT_TRUE(fs::exists(dir / "checks.json")) << slurp(dir.string() + ".log");
     }
@@ -58,7 +61,7 @@ TEST(Determinism, OneAndTwoThreadsAndRunAfterRun) {
     for (const auto& e : fs::directory_iterator(one))
         if (e.path().extension() == ".h5") h5.push_back(e.path().filename().string());
     ASSERT_EQ(h5.size(), 2u) << "finger_twist writes case-a.h5 and refined.h5";
-    for (const fs::path& other : {two, again}) {
+    for (const fs::path& other : {two}) {
         EXPECT_EQ(slurp(one / "checks.json"), slurp(other / "checks.json")) << other;
         EXPECT_EQ(runs_without_timings(one / "runs.json"), runs_without_timings(other / "runs.json")) << other;
         for (const auto& f : h5) EXPECT_EQ(slurp(one / f), slurp(other / f)) << other / f << " differs byte for byte";

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -183,6 +184,66 @@ TEST(RunFolder, RefusesAConcurrentRunAndCleansKilledRuns) {
         EXPECT_FALSE(fs::exists(dir / "frequencies.csv.999999-0.partial"));
     }
     EXPECT_TRUE(files_in(dir).empty());
+}
+
+TEST(RunFolder, AResumedRunAdoptsTheKilledRunsStagingFolder) {
+    const auto dir = scratch("run_folder_adopt");
+    // Two killed runs' staging folders (the newer one is the run to resume) and a temporary.
+    fs::create_directories(dir / ".run-999998-1");
+    io::write_text_file(dir / ".run-999998-1" / "old-restart-1.h5", "older");
+    fs::last_write_time(dir / ".run-999998-1", fs::file_time_type::clock::now() - std::chrono::hours(1));
+    fs::create_directories(dir / ".run-999999-2");
+    io::write_text_file(dir / ".run-999999-2" / "bar-restart-7.h5", "dump");
+    io::write_text_file(dir / ".run-999999-2" / "results_0000.vtu.999999-0.partial", "half");
+    {  // adopted, then failing again: kept for the next resume
+        io::RunFolder run(dir, "test", io::RunFolder::Leftovers::adopt);
+        EXPECT_TRUE(run.adopted());
+        EXPECT_EQ(run.staging(), dir / ".run-999999-2");
+        EXPECT_EQ(slurp(run.staging() / "bar-restart-7.h5"), "dump");
+        EXPECT_FALSE(fs::exists(dir / ".run-999998-1"));
+        EXPECT_FALSE(fs::exists(dir / ".run-999999-2" / "results_0000.vtu.999999-0.partial"));
+    }
+    EXPECT_TRUE(fs::exists(dir / ".run-999999-2" / "bar-restart-7.h5"));
+    {  // adopted and completed: the killed run's files and the resumed run's are one set
+        io::RunFolder run(dir, "test", io::RunFolder::Leftovers::adopt);
+        ASSERT_TRUE(run.adopted());
+        io::write_text_file(run.staging() / "bar-restart-9.h5", "dump 2");
+        run.commit();
+    }
+    EXPECT_EQ(files_in(dir), (std::vector<std::string>{"bar-restart-7.h5", "bar-restart-9.h5", "manifest.txt"}));
+    {  // nothing to adopt: a fresh staging folder
+        io::RunFolder run(dir, "test", io::RunFolder::Leftovers::adopt);
+        EXPECT_FALSE(run.adopted());
+    }
+}
+
+TEST(RunFolder, ACommitKilledOnTheWayIsRepairedByTheNextRun) {
+    const auto dir = scratch("run_folder_killed_commit");
+    {
+        io::RunFolder run(dir, "test");
+        io::write_text_file(run.staging() / "a.txt", "1");
+        io::write_text_file(run.staging() / "b.txt", "1");
+        run.commit();
+    }
+    EXPECT_FALSE(fs::exists(dir / io::RunFolder::pending_name));
+    // What a run killed in commit() leaves: its list, c.txt already moved into place, b2.txt staged.
+    io::write_text_file(dir / io::RunFolder::pending_name, "# staging folder .run-999999-3\nb2.txt\nc.txt\n");
+    io::write_text_file(dir / "c.txt", "2");
+    fs::create_directories(dir / ".run-999999-3");
+    io::write_text_file(dir / ".run-999999-3" / "b2.txt", "2");
+    {  // resumed: c.txt goes back to the adopted staging folder, which is whole again
+        io::RunFolder run(dir, "test", io::RunFolder::Leftovers::adopt);
+        ASSERT_TRUE(run.adopted());
+        EXPECT_EQ(slurp(run.staging() / "c.txt"), "2");
+        EXPECT_FALSE(fs::exists(dir / "c.txt"));
+        io::write_text_file(dir / "c.txt", "2");  // as if the resume had not happened (the run failed)
+    }
+    {  // a fresh run that writes only a.txt: b.txt (previous set) and c.txt (the killed commit's) are stale
+        io::RunFolder run(dir, "test");
+        io::write_text_file(run.staging() / "a.txt", "3");
+        run.commit();
+    }
+    EXPECT_EQ(files_in(dir), (std::vector<std::string>{"a.txt", "manifest.txt"}));
 }
 
 TEST(RunFolder, AnUnwritableFolderIsRefusedBeforeTheRun) {

@@ -79,7 +79,7 @@ std::string slurp(const fs::path& p) {
     return s.str();
 }
 
-// The visible files under dir (not the lock, staging folders or temporaries of a run), relative.
+// The visible files under dir (not the lock, pending list, staging folders or temporaries of a run), relative.
 std::vector<std::string> visible_files(const fs::path& dir) {
     std::vector<std::string> files;
     if (!fs::exists(dir)) return files;
@@ -89,7 +89,8 @@ std::vector<std::string> visible_files(const fs::path& dir) {
             it.disable_recursion_pending();
             continue;
         }
-        if (it->is_regular_file() && name != ".lock") files.push_back(fs::relative(it->path(), dir).generic_string());
+        if (it->is_regular_file() && name != ".lock" && name != ".manifest-pending")  // RunFolder's bookkeeping
+            files.push_back(fs::relative(it->path(), dir).generic_string());
     }
     std::sort(files.begin(), files.end());
     return files;
