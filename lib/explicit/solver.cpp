@@ -19,6 +19,7 @@
 #include "core/error.hpp"
 #include "core/progress.hpp"
 #include "element/critical_time_step.hpp"
+#include "explicit/node_update.hpp"
 #include "explicit/parallel.hpp"
 #include "io/hdf5.hpp"
 
@@ -1409,11 +1410,7 @@ RunSummary ExplicitSolver::run() {
     // v(n-1/2) reported at n. That is exactly the energy the update removes, however strong and
     // abrupt the viscosity (booking the power at v(n-1/2) times dt is first order: off by
     // f_visc . (v(n+1/2) - v(n-1/2)) dt / 2 per step, tens of % in a violent impact, tests/explicit).
-    struct Partial {
-        double ke = 0, ke_plus = 0, damp = 0, wext = 0, wabs = 0, damp_half = 0, wext_half = 0;
-        double wprov = 0, wprov_half = 0, visc = 0, visc_half = 0;
-        int bad = -1;
-    };
+    using Partial = explicit_detail::NodeSums;
     const int chunks = par::chunk_count(n);
     std::vector<Partial> partial(chunks);
     const double tiny = 1e-12 * opt_.end_time;
@@ -1464,76 +1461,27 @@ RunSummary ExplicitSolver::run() {
         // Central difference (Eq 2-5 with lumped M): v(n+1/2) from v(n-1/2), with the damping force
         // -alpha m v taken at the mid-point (v(n-1/2) + v(n+1/2))/2 (second order, unconditionally
         // stable for the damping term); x(n+1) = x(n) + dt v(n+1/2).
+        // (explicit/node_update.cpp: the update of one chunk of nodes, compiled for AVX-512 too.)
+        explicit_detail::NodeUpdateData nu;
+        nu.mass = s_.mass.data();
+        nu.alpha = alpha_.data();
+        nu.fixed = fixed_.data();
+        nu.target_index = target_index_.data();
+        nu.target = target_.data();
+        nu.f = s_.f.data();
+        nu.fext = fext_.data();
+        nu.fprov = providers ? fprov_.data() : nullptr;
+        nu.fv = book_viscous_ ? s_.fv.data() : nullptr;
+        nu.v = s_.v.data();
+        nu.x = s_.x.data();
+        nu.loads = has_loads_;
+        nu.providers = providers;
+        nu.book_viscous = book_viscous_;
+        nu.dtavg = dtavg;
+        nu.dt_half = dt_half_;
         par::for_each_index(chunks, n >= par::kParallelMin, [&](int c) {
-            Partial p;
             const auto [i0, i1] = par::chunk_range(c, n);
-            for (int i = i0; i < i1; ++i) {
-                const double m = s_.mass[i];
-                if (!(m > 0.0)) {  // a node no element uses: it moves only when prescribed (rigid parts)
-                    const int ti = target_index_[i];
-                    if (ti >= 0) {
-                        Vec3 vp = Vec3::Zero();
-                        for (int d = 0; d < 3; ++d)
-                            if (!((fixed_[i] >> d) & 1u) && !std::isnan(target_[ti][d])) vp[d] = target_[ti][d];
-                        s_.v[i] = vp;
-                        s_.x[i] += dt_half_ * vp;
-                    }
-                    continue;
-                }
-                const Vec3 vm = s_.v[i];
-                const Vec3 F = providers ? Vec3(fext_[i] + fprov_[i] - s_.f[i]) : Vec3(fext_[i] - s_.f[i]);
-                // Undamped nodes (a = 0) skip the three divisions by 1 + a = 1: (1 - 0) vm = vm and
-                // x / 1 = x exactly, so the same bits.
-                const double a = alpha_[i] * dtavg * 0.5;
-                Vec3 vp = a == 0.0 ? Vec3(vm + (dtavg / m) * F) : Vec3(((1.0 - a) * vm + (dtavg / m) * F) / (1.0 + a));
-                const unsigned fx = fixed_[i] & 7u;
-                const int ti = target_index_[i];
-                if (fx || ti >= 0) {
-                    for (int d = 0; d < 3; ++d) {
-                        if ((fx >> d) & 1u)
-                            vp[d] = 0.0;
-                        else if (ti >= 0 && !std::isnan(target_[ti][d]))
-                            vp[d] = target_[ti][d];
-                        else
-                            continue;
-                        // Work of the reaction that enforces the constraint.
-                        const double vavg = 0.5 * (vm[d] + vp[d]);
-                        const double R = m * (vp[d] - vm[d]) / dtavg - F[d] + alpha_[i] * m * vavg;
-                        p.wext += R * dtavg * vavg;
-                        p.wext_half += 0.5 * R * dtavg * vm[d];
-                        p.wabs += std::abs(R * dtavg * vavg);
-                    }
-                }
-                const Vec3 vavg = 0.5 * (vm + vp);
-                // Terms that are zero are skipped (no loads: fext = 0; no mass damping: alpha = 0;
-                // no contact force on the node): adding a zero leaves these sums' bits as they are
-                // (they start at +0 and never become -0).
-                if (has_loads_) {
-                    const double we = fext_[i].dot(vavg) * dtavg;
-                    p.wext += we;
-                    p.wext_half += 0.5 * fext_[i].dot(vm) * dtavg;
-                    p.wabs += std::abs(we);
-                }
-                if (alpha_[i] != 0.0) {
-                    p.damp += alpha_[i] * m * vavg.squaredNorm() * dtavg;
-                    p.damp_half += 0.5 * alpha_[i] * m * vavg.dot(vm) * dtavg;
-                }
-                if (providers && fprov_[i] != Vec3::Zero()) {
-                    p.wprov += fprov_[i].dot(vavg) * dtavg;
-                    p.wprov_half += 0.5 * fprov_[i].dot(vm) * dtavg;
-                }
-                if (book_viscous_) {
-                    p.visc += s_.fv[i].dot(vavg) * dtavg;
-                    p.visc_half += 0.5 * s_.fv[i].dot(vm) * dtavg;
-                }
-                p.ke += 0.5 * m * vm.dot(vp);
-                const double kp = 0.5 * m * vp.squaredNorm();
-                p.ke_plus += kp;
-                if (!std::isfinite(kp) && p.bad < 0) p.bad = i;
-                s_.v[i] = vp;
-                s_.x[i] += dt_half_ * vp;
-            }
-            partial[c] = p;
+            partial[c] = explicit_detail::update_nodes(nu, i0, i1);
         });
         Partial tot;
         for (const auto& p : partial) {  // fixed order: deterministic
