@@ -462,6 +462,7 @@ private:
     std::unique_ptr<io::PvdSeries> pvd_;
     double w_abs_ = 0.0;
     bool has_loads_ = false;
+    double gravity_c_ = std::numeric_limits<double>::quiet_NaN();  // the gravity curve's value in fext_ (external_forces)
     std::vector<std::array<double, 3>> target_;  // prescribed velocity per constrained node (NaN: free)
     std::vector<int> target_index_;              // per node: index into target_, or -1
     long element_cycles_ = 0;
