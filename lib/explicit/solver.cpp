@@ -1358,6 +1358,7 @@ RunSummary ExplicitSolver::run() {
     // Progress on stderr (core/progress.hpp) and Ctrl-C as a clean stop after the current cycle.
     Progress progress(opt_.name, opt_.end_time, opt_.progress ? Progress::Mode::Auto : Progress::Mode::Quiet);
     const InterruptGuard interrupt_guard;
+    gravity_c_ = std::numeric_limits<double>::quiet_NaN();  // fext_ recomputed at the first cycle (external_forces)
     const int n = s_.node_count(), nr = s_.rotational_count();
     const long cycles0 = element_cycles_, step0 = step_;
 
