@@ -222,6 +222,13 @@ contact::ContactInterface& HandModel::contact(const std::string& name) const {
     throw InputError(fmt::format("hand model: no contact pair '{}'", name));
 }
 
+std::vector<std::pair<std::string, ContactReport>> HandModel::contact_reports() const {
+    std::vector<std::pair<std::string, ContactReport>> r;
+    for (const auto& p : pairs_) r.emplace_back(p.name, contact::contact_report(*p.contact));
+    if (mirror_wall_) r.emplace_back(mirror_wall_->name(), mirror_wall_->contact_report());
+    return r;
+}
+
 std::vector<int> HandModel::part_nodes(const std::string& part) const {
     auto it = part_nodes_.find(part);
     if (it == part_nodes_.end()) throw InputError(fmt::format("hand model: no deformable part '{}'", part));
