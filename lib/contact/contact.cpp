@@ -30,6 +30,45 @@ struct ContactInterface::Pass {
         Vec3 normal = Vec3::Zero();     // the contact normal of the last cycle (side applied)
     };
     std::vector<History> history;       // per slave node
+    // ContactOptions::skip_far_candidates: each master segment's box of this evaluation (built on
+    // first use: `stamp` counts the evaluations), and the candidates phase 1 left unprojected.
+    std::vector<SegmentBox> box;
+    std::vector<long> box_stamp;
+    long stamp = 0;
+    std::vector<int> skipped;
+    double edge_tolerance = 0.05;
+
+    const SegmentBox& box_of(int s, std::span<const Vec3> x) {
+        if (box_stamp[s] != stamp) {
+            const auto& seg = master->segments[s];
+            box[s] = seg.count == 4 ? segment_box(x[seg.n[0]], x[seg.n[1]], x[seg.n[2]], x[seg.n[3]])
+                                    : segment_box(x[seg.n[0]], x[seg.n[1]], x[seg.n[2]]);
+            box_stamp[s] = stamp;
+        }
+        return box[s];
+    }
+
+    // False only when candidate s provably cannot capture the node at p (pen < 0) or, a capture with
+    // penetration pen >= 0 found, cannot veto it (evaluate's rules). Either needs the tangential
+    // offset t <= L (the edge tolerance; a front veto: t <= 1e-9 size) and a raw gap g (Projection::gap
+    // before the offsets O are taken off) with, for a capture, -depth <= g - O < 0, for a veto
+    // 0 < g - O < pen. So the node is within |g| + t <= (depth or pen) + O + L of the segment, and
+    // (one-sided segment, SegmentBox's height bounds) a capture has height <= w + O + L (g < O), a
+    // veto -w - L <= height <= w + pen + O + L (O < g < pen + O). Slack 1e-9 size for rounding.
+    bool may_matter(int s, std::span<const Vec3> x, const Vec3& p, double node_offset, double pen) {
+        const auto& seg = master->segments[s];
+        const SegmentBox& b = box_of(s, x);
+        const double O = seg.offset + node_offset;
+        const double L = (std::max(edge_tolerance, 1e-9) + 1e-9) * size[s];
+        const double reach = (pen < 0.0 ? depth[s] : pen) + O + L;
+        if (b.distance_below(p) > reach) return false;
+        if (!seg.two_sided && b.normal_bounded) {
+            const double h = b.height(p);
+            if (h > b.w + std::max(pen, 0.0) + O + L) return false;  // in front
+            if (pen >= 0.0 && h < -b.w - L) return false;             // behind: no veto
+        }
+        return true;
+    }
 
     Pass(const ContactSurface& s, const ContactSurface& m, bool is_rigid, const ContactOptions& o)
         : slave(&s), master(&m), rigid(is_rigid),
@@ -49,6 +88,9 @@ struct ContactInterface::Pass {
         }
         master_nodes.assign(nodes.begin(), nodes.end());
         history.resize(s.nodes.size());
+        box.resize(m.segments.size());
+        box_stamp.assign(m.segments.size(), -1);
+        edge_tolerance = o.edge_tolerance;
         slave_x.resize(s.nodes.size());
     }
 };
@@ -124,6 +166,7 @@ void ContactInterface::evaluate(std::span<const Vec3> x, std::span<const Vec3> v
         const auto& segs = P.master->segments;
         std::span<const Vec3> xm = x, vm = vs;
         for (std::size_t i = 0; i < snodes.size(); ++i) P.slave_x[i] = x[snodes[i]];
+        ++P.stamp;  // the segment boxes of the last evaluation are stale
         const bool self = !P.rigid;  // a node never contacts a face it belongs to
         const auto search0 = std::chrono::steady_clock::now();
         P.list.update(P.slave_x, xm, segs, P.depth, P.lateral, P.master_nodes, P.turn_factor, [&](int i, int s) {
@@ -163,7 +206,10 @@ void ContactInterface::evaluate(std::span<const Vec3> x, std::span<const Vec3> v
             double nearest_front = std::numeric_limits<double>::infinity();
             double nearest_front_beside = std::numeric_limits<double>::infinity();
             const double node_offset = P.slave->node_offset.empty() ? 0.0 : P.slave->node_offset[i];
-            for (int s : candidates) {
+            // Projects the node onto candidate s: its veto terms, and (may_capture) whether it is the
+            // admissible segment.
+            auto consider = [&](int s, bool may_capture) {
+                ++projections_;
                 const auto& seg = segs[s];
                 Projection pr = seg.count == 4
                                     ? project_quad(xs, xm[seg.n[0]], xm[seg.n[1]], xm[seg.n[2]], xm[seg.n[3]])
@@ -188,14 +234,45 @@ void ContactInterface::evaluate(std::span<const Vec3> x, std::span<const Vec3> v
                     nearest_front = std::min(nearest_front, pr.gap);
                 else if (pr.gap > 1e-3 * P.size[s] && pr.tangential_offset <= opt_.edge_tolerance * P.size[s])
                     nearest_front_beside = std::min(nearest_front_beside, pr.gap);
-                if (!(pr.gap < -tiny) || -pr.gap > P.depth[s] || pr.tangential_offset > opt_.edge_tolerance * P.size[s])
-                    continue;
+                if (!may_capture || !(pr.gap < -tiny) || -pr.gap > P.depth[s] ||
+                    pr.tangential_offset > opt_.edge_tolerance * P.size[s])
+                    return;
                 const bool kept = s == hist.segment;
                 if (best < 0 || kept || (best != hist.segment && pr.distance < bp.distance)) {
                     best = s;
                     best_side = side;
                     bp = pr;
                 }
+            };
+            if (!opt_.skip_far_candidates) {
+                for (int s : candidates) consider(s, true);
+            } else {
+                // The same choice with fewer projections (same segment, same projection, same veto:
+                // the forces to the last bit; test ContactPenalty.SkippingFarCandidatesChangesNothing).
+                // (1) The segment of the last cycle first: while it stays admissible it is the one
+                // whatever the others give, and they matter only through the outside veto. (2) A
+                // candidate is projected only when its box (SegmentBox) says it may capture the node
+                // (phase 1) or veto the capture found (phase 2, with that penetration).
+                const auto& skipped = P.skipped;
+                P.skipped.clear();
+                int kept = -1;
+                if (hist.segment >= 0 && std::find(candidates.begin(), candidates.end(), hist.segment) != candidates.end()) {
+                    kept = hist.segment;
+                    consider(kept, true);
+                }
+                for (int s : candidates) {
+                    if (s == kept) continue;
+                    if (best < 0 || best != kept) {  // no capture kept: may s capture?
+                        if (P.may_matter(s, xm, xs, node_offset, -1.0)) {
+                            consider(s, true);
+                            continue;
+                        }
+                    }
+                    P.skipped.push_back(s);
+                }
+                if (best >= 0)
+                    for (int s : skipped)
+                        if (P.may_matter(s, xm, xs, node_offset, -bp.gap)) consider(s, false);
             }
             if (best >= 0 && (nearest_front < -bp.gap ||
                               (bp.tangential_offset > 1e-9 * P.size[best] && nearest_front_beside < -bp.gap)))

@@ -48,6 +48,11 @@ struct ContactOptions {
     double margin = 0.0;             // search margin [m]; 0: 0.25 x mean master segment size
     int max_rebuild_interval = 100;  // cycles between forced rebuilds of the candidate lists
     double edge_tolerance = 0.05;    // projection may fall this fraction of the segment size outside it
+    // Project a node only onto the candidates that can matter this cycle: the segment it was on (kept
+    // while admissible), and the others only where their box (projection.hpp SegmentBox) does not
+    // rule out a capture or an outside veto. The same forces to the last bit as projecting every
+    // candidate (false: the reference, for tests).
+    bool skip_far_candidates = true;
 };
 
 /// An active contact: slave node `node` against master segment `segment` of the pass (`pass` 0:
@@ -101,6 +106,9 @@ public:
     double max_penetration_fraction() const { return max_penetration_fraction_; }
     /// Wall time spent in the candidate search (CandidateList::update) over all evaluations [s].
     double search_seconds() const { return search_s_; }
+    /// Node-to-segment projections made over all evaluations (ContactOptions::skip_far_candidates
+    /// saves most of them).
+    long projections() const { return projections_; }
     /// The surfaces: pass 0's slave nodes lie on slave_surface(), its master segments on
     /// master_surface(); pass 1 (two-way) swaps them.
     const ContactSurface& slave_surface() const { return *slave_; }
@@ -135,6 +143,7 @@ private:
     std::vector<std::unique_ptr<Pass>> passes_;
     double stored_ = 0.0, dissipated_ = 0.0, rigid_work_ = 0.0, rigid_power_ = 0.0;
     double max_penetration_ = 0.0, max_penetration_fraction_ = 0.0, search_s_ = 0.0;
+    long projections_ = 0;
     Vec3 f_master_ = Vec3::Zero(), m_master_ = Vec3::Zero();
     std::vector<ContactPoint> points_;
 };

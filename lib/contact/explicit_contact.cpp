@@ -26,9 +26,17 @@ double ContactProvider::stable_time_step(const NodalState&) const {
     return w2_ > 0.0 ? 2.0 / std::sqrt(w2_) : std::numeric_limits<double>::infinity();
 }
 
-ContactReport ContactProvider::contact_report() const {
-    return {true, c_.max_penetration(), c_.max_penetration_fraction(), c_.stored_energy(), c_.dissipated_energy()};
+ContactReport contact_report(const ContactInterface& c) {
+    return {true,
+            c.max_penetration(),
+            c.max_penetration_fraction(),
+            c.stored_energy(),
+            c.dissipated_energy(),
+            c.force_on_master(),
+            static_cast<int>(c.contacts().size())};
 }
+
+ContactReport ContactProvider::contact_report() const { return contact::contact_report(c_); }
 
 void ContactProvider::save_state(io::H5Writer& w, const std::string& prefix) const {
     w.write(prefix + "provider", std::vector<double>{t_prev_, first_ ? 1.0 : 0.0});

@@ -55,6 +55,10 @@ private:
     bool first_ = true;
 };
 
+/// The interface's statistics as the run summary reads them (ContactProvider::contact_report); the
+/// count of active contacts is that of contacts() (a node on two passes counts twice).
+ContactReport contact_report(const ContactInterface& contact);
+
 /// Adds the interface to the model as a force provider; the returned reference stays valid for the
 /// model's life (outputs: force_on_master(), contacts(), energies).
 ContactInterface& add_contact(ExplicitModel& model, ContactInterface contact);

@@ -139,4 +139,46 @@ Projection project_quad(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3&
     return best;
 }
 
+namespace {
+
+// The frame and extents of SegmentBox for corners x[0..count), normal direction N (not normalized),
+// in-plane direction E; corner_normals: the map's normal at each corner.
+SegmentBox make_box(const Vec3* const* x, int count, const Vec3& N, const Vec3& E, const Vec3* corner_normals) {
+    SegmentBox b;
+    for (int k = 0; k < count; ++k) b.c += *x[k];
+    b.c /= count;
+    const double ln = N.norm();
+    if (ln > 0.0) b.n = N / ln;
+    Vec3 e = E - E.dot(b.n) * b.n;  // orthogonal to n (to rounding): the frame's distances are Euclidean
+    if (!(e.norm() > 0.0)) e = b.n.unitOrthogonal();
+    b.e1 = e.normalized();
+    b.e2 = b.n.cross(b.e1);
+    b.normal_bounded = ln > 0.0;
+    for (int k = 0; k < count; ++k) {
+        const Vec3 r = *x[k] - b.c;
+        b.w = std::max(b.w, std::abs(r.dot(b.n)));
+        b.a1 = std::max(b.a1, std::abs(r.dot(b.e1)));
+        b.a2 = std::max(b.a2, std::abs(r.dot(b.e2)));
+        const double l = corner_normals[k].norm();
+        if (!(corner_normals[k].dot(b.n) > 0.1 * l)) b.normal_bounded = false;
+    }
+    return b;
+}
+
+}  // namespace
+
+SegmentBox segment_box(const Vec3& a, const Vec3& b, const Vec3& c) {
+    const Vec3 N = (b - a).cross(c - a);
+    const Vec3* x[3] = {&a, &b, &c};
+    const Vec3 normals[3] = {N, N, N};
+    return make_box(x, 3, N, b - a, normals);
+}
+
+SegmentBox segment_box(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
+    const Vec3* x[4] = {&a, &b, &c, &d};
+    // x_xi x x_eta at the corners (-1,-1), (1,-1), (1,1), (-1,1), up to a positive factor.
+    const Vec3 normals[4] = {(b - a).cross(d - a), (b - a).cross(c - b), (c - d).cross(c - b), (c - d).cross(d - a)};
+    return make_box(x, 4, (c - a).cross(d - b), c - a, normals);
+}
+
 }  // namespace fem::contact

@@ -71,7 +71,7 @@ double PlanarWall::stable_time_step(const NodalState&) const {
 }
 
 ContactReport PlanarWall::contact_report() const {
-    return {true, max_penetration_, max_penetration_fraction_, stored_, 0.0};
+    return {true, max_penetration_, max_penetration_fraction_, stored_, 0.0, force_on_wall_, static_cast<int>(active_.size())};
 }
 
 // The forces depend on the positions only; what a restarted run must continue is the statistics.

@@ -141,6 +141,9 @@ struct ContactReport {
     double max_penetration = 0.0;         // deepest penetration over the run [m]
     double max_penetration_fraction = 0.0;  // deepest as a fraction of the slave's local element size
     double stored_energy = 0.0, dissipated_energy = 0.0;  // contact energy = stored + dissipated [J]
+    // The last evaluation (what a study's observer samples every cycle: impulses, contact times):
+    Vec3 force_on_master = Vec3::Zero();  // resultant force of the slave side on the master (a wall: on the wall) [N]
+    int active = 0;                       // slave nodes in contact
 };
 
 /// State-dependent forces from outside the element groups (contact, couplings): the solver calls

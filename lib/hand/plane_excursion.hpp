@@ -5,9 +5,12 @@
 // sampled by the studies every 0.1 ms.
 #include <array>
 #include <span>
+#include <string>
 #include <vector>
 
+#include "contact/surface.hpp"
 #include "core/types.hpp"
+#include "hand/scene.hpp"
 
 namespace fem::hand {
 
@@ -24,6 +27,12 @@ inline void track_plane_excursion(std::span<const int> nodes, std::span<const Ve
         if (d > 0.0 && b[3] < 0.0) b[3] = t;
         if (d > b[0]) b = {d, t, static_cast<double>(n), b[3]};
     }
+}
+
+/// The surface nodes of finger `finger` ("A".."E"; part "finger-<finger>"): the nodes a finger can
+/// push beyond the plane with, and those of the studies' finger-finger clearance.
+inline std::vector<int> finger_surface_nodes(const HandModel& hm, const std::string& finger) {
+    return contact::ContactSurface::from_part(hm.mesh(), "finger-" + finger, hm.scene().hand.rubber).nodes;
 }
 
 }  // namespace fem::hand

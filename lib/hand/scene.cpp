@@ -285,6 +285,13 @@ contact::ContactInterface& HandModel::contact(const std::string& name) const {
     throw InputError(fmt::format("hand model: no contact pair '{}'", name));
 }
 
+std::vector<std::pair<std::string, ContactReport>> HandModel::contact_reports() const {
+    std::vector<std::pair<std::string, ContactReport>> r;
+    for (const auto& p : pairs_) r.emplace_back(p.name, contact::contact_report(*p.contact));
+    if (mirror_wall_) r.emplace_back(mirror_wall_->name(), mirror_wall_->contact_report());
+    return r;
+}
+
 const OffsetTie& HandModel::tie(const std::string& part, const std::string& plate) const {
     const auto it = ties_.find({part, plate});
     if (it == ties_.end()) throw InputError(fmt::format("hand model: '{}' is not tied to plate '{}'", part, plate));

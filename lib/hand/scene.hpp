@@ -192,6 +192,10 @@ public:
     const OffsetTie& tie(const std::string& part, const std::string& plate) const;
     /// The mirror wall (Scene::mirror_contact); null without one.
     const contact::PlanarWall* mirror_wall() const { return mirror_wall_; }
+    /// Every contact of the model as (name, report): the pairs in scene order, then the mirror wall
+    /// (a planar wall is a ForceProvider of its own, not a ContactInterface). What a study samples
+    /// per cycle (impulse, contact time, penetration) in one loop.
+    std::vector<std::pair<std::string, ContactReport>> contact_reports() const;
 
     /// Nodes of a part (every node of its elements, sorted).
     std::vector<int> part_nodes(const std::string& part) const;

@@ -94,17 +94,15 @@ struct Recorder {
         if (surf.empty()) {
             plane_z = hm.scene().objects.at(0).centre.z();
             for (const auto& f : kFingers) {
-                surf[f] = contact::ContactSurface::from_part(hm.mesh(), "finger-" + f, hm.scene().hand.rubber).nodes;
+                surf[f] = finger_surface_nodes(hm, f);
                 beyond[f] = kNoExcursion;
             }
         }
         for (const auto& f : kFingers) track_plane_excursion(surf[f], s.state().x, plane_z, t, beyond[f]);
         for (const auto& f : kFingers) bins[f].push_back(h.max_von_mises.at("finger-" + f).back());
-        if (t <= window + 1e-12)  // deepest penetration in the judged window (running maximum of every pair)
-        {
-            for (const auto& p : hm.pairs()) pen = std::max(pen, p.contact->max_penetration_fraction());
-            if (const auto* w = hm.mirror_wall()) pen = std::max(pen, w->max_penetration_fraction());
-        }
+        // The deepest penetration in the judged window: running maximum of every pair and the mirror wall.
+        if (t <= window + 1e-12)
+            for (const auto& [name, c] : hm.contact_reports()) pen = std::max(pen, c.max_penetration_fraction);
         if (snap < kSnapshots.size() && t >= kSnapshots[snap] - 1e-9) {
             ++snap;
             snap_t.push_back(t);

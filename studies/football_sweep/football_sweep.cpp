@@ -232,7 +232,7 @@ struct Recorder {
         r.window = o.window;
         if (v.football) r.y0 = hm.centre_of_mass("football", hm.mesh().nodes).y();
         for (const auto& f : kFingers)
-            surf[f] = contact::ContactSurface::from_part(hm.mesh(), "finger-" + f, hm.scene().hand.rubber).nodes;
+            surf[f] = hand::finger_surface_nodes(hm, f);
         for (const auto& [a, b] : kFingerPairs) r.min_clearance[a + b] = 1e9;
         if (v.football) {
             std::set<int> nodes;
@@ -309,32 +309,19 @@ struct Recorder {
     // the deepest penetration (lib/contact: a fraction of the slave node's element size) and when
     // it was reached.
     void contacts(const HandModel& hm, double t, double dt) {
-        for (const auto& p : hm.pairs()) {
-            auto& q = r.pairs[p.name];
-            q.impulse += p.contact->force_on_master().norm() * dt;
-            if (!p.contact->contacts().empty()) {
+        for (const auto& [name, c] : hm.contact_reports()) {  // the pairs and the mirror wall
+            auto& q = r.pairs[name];
+            q.impulse += c.force_on_master.norm() * dt;
+            if (c.active > 0) {
                 q.time += dt;
                 if (q.first < 0) q.first = t;
                 q.last = t;
             }
-            if (p.contact->max_penetration_fraction() > q.max_penetration_fraction) {
-                if (p.contact->max_penetration_fraction() > std::max(0.3, q.max_penetration_fraction + 0.1))
-                    report_deep(hm, p, t);
-                q.max_penetration_fraction = p.contact->max_penetration_fraction(), q.at = t;
+            if (c.max_penetration_fraction > q.max_penetration_fraction) {
+                if (c.max_penetration_fraction > std::max(0.3, q.max_penetration_fraction + 0.1)) report_deep(hm, name, c, t);
+                q.max_penetration_fraction = c.max_penetration_fraction, q.at = t;
             }
-            q.max_penetration = p.contact->max_penetration();
-        }
-        if (const contact::PlanarWall* w = hm.mirror_wall()) {  // the fingers on their mirror images' plane
-            auto& q = r.pairs[w->name()];
-            q.impulse += w->force_on_wall().norm() * dt;
-            if (!w->nodes_in_contact().empty()) {
-                q.time += dt;
-                if (q.first < 0) q.first = t;
-                q.last = t;
-            }
-            if (w->max_penetration_fraction() > q.max_penetration_fraction)
-                q.max_penetration_fraction = w->max_penetration_fraction(), q.at = t;
-            q.max_penetration = w->max_penetration();
+            q.max_penetration = c.max_penetration;
         }
         if (!v.football) return;
         // Force on each finger from the football (fingers on football: pass 0 = finger nodes on
@@ -358,22 +345,21 @@ struct Recorder {
 
     // A new deepest penetration of a pair (beyond 0.3 of the element size): which node, on which
     // side, how deep, so that a jump can be traced (README "Open problems").
-    void report_deep(const HandModel& hm, const HandModel::Pair& p, double t) const {
-        const contact::ContactPoint* deep = nullptr;
-        for (const auto& c : p.contact->contacts())
-            if (!deep || c.gap < deep->gap) deep = &c;
-        if (!deep) return;
-        const auto& m = hm.mesh();
-        auto part_of_node = [&](int n) -> std::string {
-            if (!hm.finger_of_node(n).empty()) return "finger-" + hm.finger_of_node(n);
-            return "object/plate";
-        };
-        fmt::print("  {} case {} t {:.4f}: {} penetration {:.3f} of the element ({:.2f} mm) at node {} ({}, pass {}, "
-                   "x = {:.1f} {:.1f} {:.1f} mm, normal {:.2f} {:.2f} {:.2f}, {} contacts)\n", o.name, r.id, t, p.name,
-                   p.contact->max_penetration_fraction(), 1e3 * p.contact->max_penetration(), deep->node,
-                   part_of_node(deep->node), deep->pass, 1e3 * deep->position.x(), 1e3 * deep->position.y(),
-                   1e3 * deep->position.z(), deep->normal.x(), deep->normal.y(), deep->normal.z(), p.contact->contacts().size());
-        (void)m;
+    void report_deep(const HandModel& hm, const std::string& name, const ContactReport& c, double t) const {
+        std::string where;  // the deepest contact point, where the contact keeps them (a pair, not the wall)
+        for (const auto& p : hm.pairs()) {
+            if (p.name != name) continue;
+            const contact::ContactPoint* deep = nullptr;
+            for (const auto& cp : p.contact->contacts())
+                if (!deep || cp.gap < deep->gap) deep = &cp;
+            if (!deep) break;
+            const std::string part = hm.finger_of_node(deep->node).empty() ? "object/plate" : "finger-" + hm.finger_of_node(deep->node);
+            where = fmt::format(" at node {} ({}, pass {}, x = {:.1f} {:.1f} {:.1f} mm, normal {:.2f} {:.2f} {:.2f})",
+                                deep->node, part, deep->pass, 1e3 * deep->position.x(), 1e3 * deep->position.y(),
+                                1e3 * deep->position.z(), deep->normal.x(), deep->normal.y(), deep->normal.z());
+        }
+        fmt::print("  {} case {} t {:.4f}: {} penetration {:.3f} of the element ({:.2f} mm){} ({} contacts)\n", o.name, r.id,
+                   t, name, c.max_penetration_fraction, 1e3 * c.max_penetration, where, c.active);
     }
 
     // Every 5 ms: the closest surface nodes of neighbouring fingers.

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <functional>
 #include <cmath>
 #include <numbers>
 #include <random>
@@ -13,6 +14,8 @@
 #include "contact/contact.hpp"
 #include "explicit/rigid_motion.hpp"
 #include "core/error.hpp"
+
+#include <fmt/format.h>
 
 using namespace fem;
 using namespace fem::contact;
@@ -323,6 +326,41 @@ TEST(ContactProjection, TriangleRegionsAndSignedGap) {
     EXPECT_NEAR(q.xi, -0.5, 1e-12);
     EXPECT_NEAR(q.eta, 0.5, 1e-12);
     EXPECT_NEAR(q.gap, 0.05, 1e-14);
+}
+
+// SegmentBox (projection.hpp): the box holds every point of the segment, so its distance bound never
+// exceeds the projection's distance, and where the normal is bounded the height obeys
+// -w + min(g, 0) - t <= h <= w + max(g, 0) + t. Random warped quads and triangles, rotated, with
+// points all around (beside, in front, behind). The slack is round-off.
+TEST(ContactProjection, SegmentBoxBoundsEveryProjection) {
+    std::mt19937 rng(17);
+    std::uniform_real_distribution<double> U(-1.0, 1.0);
+    int bounded = 0, checked = 0;
+    for (int k = 0; k < 400; ++k) {
+        const Eigen::Matrix3d R = Eigen::AngleAxisd(3.0 * U(rng), Vec3(U(rng), U(rng), U(rng)).normalized()).toRotationMatrix();
+        const double warp = k % 4 == 0 ? 0.6 : 0.15;  // every fourth quad badly warped
+        const Vec3 origin(U(rng), U(rng), U(rng));
+        auto corner = [&](double x, double y) {
+            return Vec3(origin + R * Vec3(x + 0.2 * U(rng), y + 0.2 * U(rng), warp * U(rng)));
+        };
+        const Vec3 a = corner(0, 0), b = corner(1, 0), c = corner(1, 1), d = corner(0, 1);
+        const bool quad = k % 3 != 0;
+        const SegmentBox box = quad ? segment_box(a, b, c, d) : segment_box(a, b, c);
+        bounded += box.normal_bounded;
+        for (int j = 0; j < 50; ++j) {
+            const Vec3 p = origin + R * Vec3(0.5 + 1.5 * U(rng), 0.5 + 1.5 * U(rng), 0.8 * U(rng));
+            const Projection pr = quad ? project_quad(p, a, b, c, d) : project_triangle(p, a, b, c);
+            const double eps = 1e-12;
+            EXPECT_LE(box.distance_below(p), pr.distance + eps) << "segment " << k << " point " << j;
+            if (!box.normal_bounded) continue;
+            ++checked;
+            const double h = box.height(p);
+            EXPECT_LE(h, box.w + std::max(pr.gap, 0.0) + pr.tangential_offset + eps) << "segment " << k << " point " << j;
+            EXPECT_GE(h, -box.w + std::min(pr.gap, 0.0) - pr.tangential_offset - eps) << "segment " << k << " point " << j;
+        }
+    }
+    EXPECT_GT(bounded, 300);  // the mildly warped ones at least
+    EXPECT_GT(checked, 15000);
 }
 
 // --- penalty force -----------------------------------------------------------------------------
@@ -674,4 +712,98 @@ TEST(ContactSurface, BallMeshIsValidAndItsSurfaceIsASphere) {
     // Bilinear facets are chords of the sphere: the area falls short by O(h^2), ~1 % at n = 12.
     EXPECT_NEAR(area / (4 * std::numbers::pi * R * R), 1.0, 0.02);
     for (int node : s.nodes) EXPECT_NEAR(m.nodes[node].norm(), R, 1e-12);
+}
+
+// ContactOptions::skip_far_candidates projects a node only onto the candidates that may capture it or
+// veto its capture; it must give what projecting every candidate gives, to the last bit: forces,
+// contact points, energies, cycle after cycle with friction history. A ball pressed into a block with
+// a warped top (two-way, friction), sliding and turning over it, then lifted off; and a shell probe
+// pushed through a shell plate with thickness (two-sided segments, offsets).
+TEST(ContactPenalty, SkippingFarCandidatesChangesNothing) {
+    struct Scenario {
+        std::string name;
+        Mesh mesh;
+        ContactSurface slave, master;
+        ContactOptions options;
+        std::function<Vec3(const Vec3&, double)> move;  // slave node at reference X, time fraction s
+    };
+    std::vector<Scenario> scenarios;
+    {
+        Mesh m = box_hex8(0.2, 0.2, 0.05, 8, 8, 2, "block");
+        std::mt19937 rng(3);
+        std::uniform_real_distribution<double> U(-1.0, 1.0);
+        for (Vec3& x : m.nodes)
+            if (x.z() > 0.049) x.z() += 0.002 * U(rng);  // warped top faces
+        Mesh ball = fem::test::ball_hex8(0.03, 6, 0.6, 0.6);
+        ball.translate(Vec3(0.07, 0.08, 0.05 + 0.03 + 0.003));  // 3 mm above the top
+        m.append(ball);
+        ContactOptions o;
+        o.friction = {0.4, 0.3, 10.0};
+        o.two_way = true;
+        Scenario sc{"ball on block", m, ContactSurface::from_part(m, "ball", kRubber),
+                    ContactSurface::from_part(m, "block", kRubber), o, {}};
+        const Vec3 c0(0.07, 0.08, 0.083);
+        sc.move = [c0](const Vec3& X, double s) {
+            // Down 10 mm (its flattened bottom 4.5 mm into the block) in the first third, slide 60 mm in
+            // x turning 0.5 rad about y, up again in the last fifth.
+            const double down = 0.010 * std::min(1.0, 3.0 * s) - (s > 0.8 ? 0.04 * (s - 0.8) : 0.0);
+            const Eigen::Matrix3d R = Eigen::AngleAxisd(0.5 * s, Vec3::UnitY()).toRotationMatrix();
+            Vec3 r = R * (X - c0);
+            if (r.z() < -0.025) r.z() = -0.025 + 0.5 * (r.z() + 0.025);
+            return Vec3(c0 + r + Vec3(0.06 * s, 0.01 * s, -down));
+        };
+        scenarios.push_back(std::move(sc));
+    }
+    {
+        Mesh m = rectangle_quads(0.1, 0.1, 6, 6, ElementShape::Quad4, "plate");
+        Mesh probe = rectangle_quads(0.03, 0.03, 3, 3, ElementShape::Quad4, "probe");
+        probe.translate(Vec3(0.02, 0.03, 0.004));
+        m.append(probe);
+        ContactOptions o;
+        o.friction = {0.3, 0.3, 0.0};
+        Scenario sc{"shell probe on shell plate", m, ContactSurface::from_part(m, "probe", kSteel, 1.0, 0.002),
+                    ContactSurface::from_part(m, "plate", kSteel, 1.0, 0.002), o, {}};
+        sc.move = [](const Vec3& X, double s) {  // down through the offsets, tilting, sliding in x
+            return Vec3(X + Vec3(0.04 * s, 0.0, -0.0035 * std::sin(3.0 * s) - 0.002 * (X.x() - 0.035) * s));
+        };
+        scenarios.push_back(std::move(sc));
+    }
+    for (auto& sc : scenarios) {
+        ContactOptions reference = sc.options;
+        reference.skip_far_candidates = false;
+        ContactInterface all(sc.name, sc.slave, sc.master, reference), skip(sc.name, sc.slave, sc.master, sc.options);
+        std::set<int> slave_nodes;
+        for (const auto& seg : sc.slave.segments)
+            for (int k = 0; k < seg.count; ++k) slave_nodes.insert(seg.n[k]);
+        const int cycles = 400;
+        const double dt = 1e-5;
+        std::vector<Vec3> x = sc.mesh.nodes, x_old = x, v(x.size(), Vec3::Zero());
+        long contacts = 0;
+        for (int cycle = 0; cycle < cycles; ++cycle) {
+            for (int n : slave_nodes) x[n] = sc.move(sc.mesh.nodes[n], static_cast<double>(cycle) / cycles);
+            for (std::size_t n = 0; n < x.size(); ++n) v[n] = (x[n] - x_old[n]) / dt;
+            x_old = x;
+            std::vector<Vec3> fa(x.size(), Vec3::Zero()), fs(x.size(), Vec3::Zero());
+            all.evaluate(x, v, cycle * dt, dt, fa);
+            skip.evaluate(x, v, cycle * dt, dt, fs);
+            for (std::size_t n = 0; n < x.size(); ++n)
+                ASSERT_TRUE(fa[n] == fs[n]) << sc.name << " cycle " << cycle << " node " << n << ": " << fa[n].transpose()
+                                            << " vs " << fs[n].transpose();
+            ASSERT_EQ(all.contacts().size(), skip.contacts().size()) << sc.name << " cycle " << cycle;
+            for (std::size_t k = 0; k < all.contacts().size(); ++k) {
+                EXPECT_EQ(all.contacts()[k].segment, skip.contacts()[k].segment);
+                EXPECT_EQ(all.contacts()[k].gap, skip.contacts()[k].gap);
+            }
+            ASSERT_EQ(all.stored_energy(), skip.stored_energy()) << sc.name << " cycle " << cycle;
+            ASSERT_EQ(all.dissipated_energy(), skip.dissipated_energy()) << sc.name << " cycle " << cycle;
+            contacts += static_cast<long>(all.contacts().size());
+        }
+        EXPECT_EQ(all.max_penetration(), skip.max_penetration());
+        fmt::print("{}: {} contacts over {} cycles; projections {} (every candidate) -> {} ({:.0f} %)\n", sc.name,
+                   contacts, cycles, all.projections(), skip.projections(),
+                   100.0 * static_cast<double>(skip.projections()) / static_cast<double>(all.projections()));
+        EXPECT_GT(contacts, 2L * cycles) << sc.name << ": the scenario must keep many nodes in contact";
+        EXPECT_GT(all.dissipated_energy(), 0.0) << sc.name << ": and slide with friction";
+        EXPECT_LT(skip.projections(), all.projections()) << sc.name;
+    }
 }
