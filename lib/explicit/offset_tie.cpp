@@ -1,5 +1,6 @@
 #include "explicit/offset_tie.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -18,8 +19,23 @@ OffsetTie::OffsetTie(std::string name, std::vector<int> nodes, std::vector<int> 
                                      nodes_.size(), anchors_.size()));
     for (std::size_t i = 0; i < nodes_.size(); ++i)
         if (nodes_[i] == anchors_[i]) throw InputError(fmt::format("tie '{}': node {} is tied to itself", name_, nodes_[i]));
+    check_options();
+}
+
+OffsetTie::OffsetTie(std::string name, std::vector<int> nodes, RigidMotion motion, OffsetTieOptions options)
+    : name_(std::move(name)), nodes_(std::move(nodes)), motion_(std::move(motion)), options_(options) {
+    if (nodes_.empty()) throw InputError(fmt::format("tie '{}': no tied nodes", name_));
+    std::vector<int> sorted = nodes_;
+    std::sort(sorted.begin(), sorted.end());
+    if (const auto it = std::adjacent_find(sorted.begin(), sorted.end()); it != sorted.end())
+        throw InputError(fmt::format("tie '{}': node {} is listed twice", name_, *it));
+    check_options();
+}
+
+void OffsetTie::check_options() const {
     if (!(options_.frequency > 0.0) || !(options_.damping_ratio >= 0.0))
         throw InputError(fmt::format("tie '{}': frequency must be positive and the damping ratio non-negative", name_));
+    if (std::isnan(options_.release_time)) throw InputError(fmt::format("tie '{}': the release time is not a number", name_));
 }
 
 void OffsetTie::initialize(const NodalState& s) {
@@ -28,6 +44,22 @@ void OffsetTie::initialize(const NodalState& s) {
     k_.resize(n);
     c_.resize(n);
     const double w = 2.0 * std::numbers::pi * options_.frequency;
+    if (motion_) {
+        // Tied to a prescribed motion: the anchor point cannot move back, so each tie is a spring
+        // and dashpot on the tied node alone (omega^2 = k / m_p, the damped bound as below).
+        dt_ = std::numeric_limits<double>::infinity();
+        for (int i = 0; i < n; ++i) {
+            const int p = nodes_[i];
+            if (p < 0 || p >= s.node_count()) throw InputError(fmt::format("tie '{}': node {} is not in the mesh", name_, p));
+            if (!(s.mass[p] > 0.0)) throw InputError(fmt::format("tie '{}': tied node {} has no mass", name_, p));
+            offset_[i] = s.X[p];
+            k_[i] = s.mass[p] * w * w;
+            c_[i] = 2.0 * options_.damping_ratio * s.mass[p] * w;
+            const double zeta = c_[i] / s.mass[p] / (2.0 * w);
+            dt_ = std::min(dt_, 2.0 / w * (std::sqrt(1.0 + zeta * zeta) - zeta));
+        }
+        return;
+    }
     std::map<int, std::pair<double, double>> at_anchor;  // anchor: (sum k, sum k |r|^2)
     for (int i = 0; i < n; ++i) {
         const int p = nodes_[i], a = anchors_[i];
@@ -60,9 +92,22 @@ void OffsetTie::initialize(const NodalState& s) {
     }
 }
 
-void OffsetTie::add_forces(double, const NodalState& s, std::vector<Vec3>& force, std::vector<Vec3>& moment) {
+void OffsetTie::add_forces(double t, const NodalState& s, std::vector<Vec3>& force, std::vector<Vec3>& moment) {
     max_gap_ = 0.0;
     total_force_.setZero();
+    if (released(t)) return;
+    if (motion_) {
+        const RigidPose pose = motion_->pose(t);
+        for (std::size_t i = 0; i < nodes_.size(); ++i) {
+            const int p = nodes_[i];
+            const Vec3 gap = s.x[p] - pose.position(offset_[i]);
+            const Vec3 f = -k_[i] * gap - c_[i] * (s.v[p] - pose.velocity(offset_[i]));
+            force[p] += f;
+            max_gap_ = std::max(max_gap_, gap.norm());
+            total_force_ += f;
+        }
+        return;
+    }
     for (std::size_t i = 0; i < nodes_.size(); ++i) {
         const int p = nodes_[i], a = anchors_[i], ra = s.rot_index[a];
         const Vec3 r = ra >= 0 ? Vec3(s.rotation[ra] * offset_[i]) : offset_[i];

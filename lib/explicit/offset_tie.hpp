@@ -15,16 +15,31 @@
 // step (the anchor's translational and rotational inertia included: omega^2 = k/m_p + sum k / m_a
 // + sum k |r|^2 / I_a, and the dashpot's damped bound) so the solver never steps past it. Its work is booked as "contact" energy
 // (stored in the springs, dissipated in the dashpots).
+//
+// Two variants for the bird on its perch (thesis Sec 5.3, THESIS_CH4_5.md reconstruction 14: "J1
+// nodes tied to the perch until 0.9 s, then released"):
+// - the anchor may be a prescribed RigidMotion instead of a node (the perch, a rigid part carried
+//   by the conveyor): each tied node is held at motion.position(X_p, t) with the dashpot on
+//   v_p - motion.velocity(X_p, t); the motion takes the reaction (it is prescribed), so the step
+//   bound is the tied node's own, omega^2 = k / m_p;
+// - `release_time`: from that time on the ties exert nothing (the paws let go at the shackling
+//   time). Their work up to then stays booked, so the energy balance holds across the release: the
+//   energy the springs held is what they had taken out of the structure, and it stays taken out.
+#include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "explicit/element_group.hpp"
+#include "explicit/rigid_motion.hpp"
 
 namespace fem {
 
 struct OffsetTieOptions {
     double frequency = 2000.0;    // [Hz] each tie's frequency on its tied node's mass
     double damping_ratio = 0.3;   // of that frequency
+    /// [s] the ties act for t < release_time and exert nothing from it on (default: never released).
+    double release_time = std::numeric_limits<double>::infinity();
 };
 
 class OffsetTie final : public ForceProvider {
@@ -32,6 +47,9 @@ public:
     /// Ties each of `nodes` to anchors[i] (same length); anchors must carry rotations (shells,
     /// beams) when any offset is non-zero. InputError for mismatched lists or a node tied to itself.
     OffsetTie(std::string name, std::vector<int> nodes, std::vector<int> anchors, OffsetTieOptions options = {});
+    /// Ties each of `nodes` to the point of the prescribed rigid `motion` that starts where the node
+    /// starts (x_p held at motion.position(X_p, t)). InputError for an empty list or a node listed twice.
+    OffsetTie(std::string name, std::vector<int> nodes, RigidMotion motion, OffsetTieOptions options = {});
     std::string name() const override { return name_; }
     void initialize(const NodalState& s) override;
     void add_forces(double t, const NodalState& s, std::vector<Vec3>& force, std::vector<Vec3>& moment) override;
@@ -40,12 +58,16 @@ public:
     double max_gap() const { return max_gap_; }
     /// Sum of the tie forces on the tied nodes at the last force evaluation [N] (the reaction).
     const Vec3& total_force() const { return total_force_; }
+    /// Whether the ties have let go at time t (t >= options.release_time).
+    bool released(double t) const { return t >= options_.release_time; }
 
 private:
     std::string name_;
-    std::vector<int> nodes_, anchors_;
+    std::vector<int> nodes_, anchors_;  // anchors_ empty when the anchor is `motion_`
+    std::optional<RigidMotion> motion_;
     OffsetTieOptions options_;
-    std::vector<Vec3> offset_;        // X_p - X_a (reference)
+    void check_options() const;
+    std::vector<Vec3> offset_;        // X_p - X_a (reference); with a motion anchor X_p
     std::vector<double> k_, c_;
     double dt_ = 0.0;
     double max_gap_ = 0.0;

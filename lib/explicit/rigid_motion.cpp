@@ -1,6 +1,9 @@
 #include "explicit/rigid_motion.hpp"
 
+#include <cmath>
+
 #include <Eigen/Geometry>
+#include <fmt/format.h>
 
 #include "core/error.hpp"
 
@@ -31,6 +34,26 @@ RigidMotion RigidMotion::translation(const Vec3& velocity, Curve scale) {
     if (!velocity.allFinite()) throw InputError("rigid translation: the velocity is not finite");
     RigidMotion m;
     m.parts_.push_back({false, Vec3::Zero(), velocity, std::move(scale)});
+    return m;
+}
+
+RigidMotion RigidMotion::piecewise_translation(const std::vector<std::pair<double, Vec3>>& start_and_velocity,
+                                               const std::string& name) {
+    const auto& sv = start_and_velocity;
+    if (sv.empty()) throw InputError(fmt::format("{}: no segments", name));
+    for (std::size_t i = 0; i < sv.size(); ++i) {
+        if (!std::isfinite(sv[i].first) || !sv[i].second.allFinite())
+            throw InputError(fmt::format("{}: segment {} has a non-finite time or velocity", name, i));
+        if (i > 0 && !(sv[i].first > sv[i - 1].first))
+            throw InputError(fmt::format("{}: segment {} starts at {} s, not after segment {} ({} s)", name, i, sv[i].first,
+                                         i - 1, sv[i - 1].first));
+    }
+    // Translations commute, so the order of the parts does not matter: x = X + sum_i v_i int_0^t s_i.
+    RigidMotion m;
+    for (std::size_t i = 0; i < sv.size(); ++i) {
+        Curve scale = i + 1 < sv.size() ? Curve::pulse(sv[i].first, sv[i + 1].first) : Curve::step(sv[i].first);
+        m.parts_.push_back({false, Vec3::Zero(), sv[i].second, std::move(scale)});
+    }
     return m;
 }
 

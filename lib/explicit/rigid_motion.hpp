@@ -23,6 +23,8 @@
 // velocity of the body point that is at x is v0 + omega x x. For the composition, with outer pose
 // (R_o, d_o): R = R_o R_i, d = R_o d_i + d_o, omega = omega_o + R_o omega_i,
 // v0 = v0_o + R_o v0_i - (R_o omega_i) x d_o.
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "core/types.hpp"
@@ -52,6 +54,16 @@ public:
     static RigidMotion rotation(const Vec3& point, const Vec3& axis, Curve omega);
     /// Translation at the velocity `velocity` x scale(t) [m/s] (default scale: constant 1).
     static RigidMotion translation(const Vec3& velocity, Curve scale = {});
+    /// Translation along a polyline at piecewise-constant velocity, written like Curve::steps:
+    /// (t_i, v_i) means the velocity v_i from t_i until t_{i+1} (the last one held for ever); at rest
+    /// before t_0; times strictly increasing. E.g. the perch of thesis Table 5-6 on the conveyor,
+    /// inclined 5 degrees until the apex at 0.7 s, then declined 30 degrees:
+    ///   piecewise_translation({{0.0, {-0.4723, 0.04132, 0}}, {0.7, {-0.4105, -0.23705, 0}}})
+    /// One translation per segment with a Curve::pulse (Curve::step for the last) as its scale, so
+    /// the position is exact (Curve::integral) and the velocity at a corner t_i is the later one.
+    /// Throws InputError naming `name` for an empty list, times not increasing or a non-finite value.
+    static RigidMotion piecewise_translation(const std::vector<std::pair<double, Vec3>>& start_and_velocity,
+                                             const std::string& name = "piecewise translation");
     /// This motion, then `outer` applied to the result: x(t) = outer(t)(this(t)(X)).
     RigidMotion then(const RigidMotion& outer) const;
 

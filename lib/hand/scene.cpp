@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <set>
 
@@ -10,6 +11,7 @@
 #include "contact/explicit_contact.hpp"
 #include "contact/rigid_wall.hpp"
 #include "core/error.hpp"
+#include "explicit/tet_groups.hpp"
 #include "mesh/finger.hpp"
 #include "mesh/mesh.hpp"
 
@@ -48,6 +50,9 @@ private:
 Scene seen_from(Scene s, double t0) {
     if (t0 == 0.0) return s;
     if (!(t0 > 0.0)) throw InputError(fmt::format("hand scene: a start time must be >= 0, got {}", t0));
+    if (!s.meshes.empty()) throw InputError("hand scene: a scene with mesh objects cannot be seen from a later time (not written)");
+    for (const auto& p : s.plates)
+        if (p.path) throw InputError(fmt::format("hand scene: plate '{}' moves on a path and cannot be seen from a later time (not written)", p.part));
     if (s.turn.omega.integral(t0) != 0.0)
         throw InputError(fmt::format("hand scene: the hand has turned before the start time {} s", t0));
     Drum& d = s.hand.drum;
@@ -70,11 +75,26 @@ Scene seen_from(Scene s, double t0) {
 
 namespace {
 // Scene::mirror_contact: the plane z = the half object's centre z, where a finger meets its mirror image.
+// The plane z = const of a half mesh object's cut (MeshObject::symmetry_set); InputError when its
+// nodes do not lie on one such plane (1e-9 of the object's size).
+double cut_plane_z(const MeshObject& o) {
+    const auto& set = o.mesh.node_set(o.symmetry_set);
+    double lo = std::numeric_limits<double>::infinity(), hi = -lo, size = 0.0;
+    for (int n : set) lo = std::min(lo, o.mesh.nodes[n].z()), hi = std::max(hi, o.mesh.nodes[n].z());
+    for (const Vec3& x : o.mesh.nodes) size = std::max(size, (x - o.mesh.nodes[set.front()]).norm());
+    if (set.empty() || hi - lo > 1e-9 * size)
+        throw InputError(fmt::format("hand scene: the symmetry set '{}' of '{}' does not lie on a plane z = const (z from {} to {})",
+                                     o.symmetry_set, o.part, lo, hi));
+    return 0.5 * (lo + hi);
+}
+
 double mirror_plane_z(const Scene& s) {
     const auto half = std::find_if(s.objects.begin(), s.objects.end(), [](const EllipsoidObject& o) { return o.half; });
-    if (half == s.objects.end() || !s.symmetry)
+    if (half != s.objects.end() && s.symmetry) return half->centre.z();
+    const auto cut = std::find_if(s.meshes.begin(), s.meshes.end(), [](const MeshObject& o) { return !o.symmetry_set.empty(); });
+    if (cut == s.meshes.end() || !s.symmetry)
         throw InputError("hand scene: mirror_contact needs a half object and its symmetry plane (symmetry = true)");
-    return half->centre.z();
+    return cut_plane_z(*cut);
 }
 }  // namespace
 
@@ -104,12 +124,37 @@ HandModel::HandModel(const Scene& scene) : scene_(scene) {
         mesh.append(m);
         material[o.part] = o.material;
     }
+    std::set<std::string> tet_parts;
+    for (const auto& o : scene_.meshes) {
+        if (material.count(o.part) || rigid.count(o.part))
+            throw InputError(fmt::format("hand scene: part name '{}' is used twice", o.part));
+        Mesh m = o.mesh;
+        bool tets = false, hexes = false;
+        for (const auto& b : m.blocks) {
+            if (b.part != o.part)
+                throw InputError(fmt::format("hand scene: mesh object '{}' has a block of part '{}' (one part per mesh object)", o.part, b.part));
+            tets |= b.shape == ElementShape::Tet4 || b.shape == ElementShape::Tet10;
+            hexes |= b.shape == ElementShape::Hex8;
+            if (b.shape != ElementShape::Tet4 && b.shape != ElementShape::Tet10 && b.shape != ElementShape::Hex8)
+                throw InputError(fmt::format("hand scene: mesh object '{}' has {} elements (tet4, tet10 or hex8 only)", o.part, to_string(b.shape)));
+        }
+        if (tets && hexes) throw InputError(fmt::format("hand scene: mesh object '{}' mixes tetrahedra and hexahedra", o.part));
+        if (m.blocks.empty()) throw InputError(fmt::format("hand scene: mesh object '{}' has no elements", o.part));
+        if (tets) tet_parts.insert(o.part);
+        if (!o.symmetry_set.empty()) cut_plane_z(o);  // refuses a cut that is not a plane z = const
+        std::map<std::string, std::vector<int>> sets;
+        for (auto& [name, set] : m.node_sets) sets[name + "-" + o.part] = set;
+        m.node_sets = std::move(sets);
+        mesh.append(m);
+        material[o.part] = o.material;
+    }
     for (const auto& p : scene_.plates) mesh.append(parallelogram_quad4(p.centre, p.u, p.v, p.nu, p.nv, p.part));
     mesh.append(drum_mesh(scene_.hand.drum, scene_.drum_segments));
     model_ = std::make_unique<ExplicitModel>(std::move(mesh));
     const Mesh& msh = model_->mesh();
     for (const auto& [part, mat] : material) {
-        model_->add_hex8(part, mat);
+        if (tet_parts.count(part)) add_tets(*model_, part, mat);
+        else model_->add_hex8(part, mat);
         std::set<int> nodes;
         for (int b : msh.blocks_of_part(part))
             for (int c : msh.blocks[b].connectivity) nodes.insert(c);
@@ -158,12 +203,30 @@ HandModel::HandModel(const Scene& scene) : scene_(scene) {
                 model_->prescribe_velocity(part_nodes_[o.part], d, o.carried_velocity[d], o.carried_scale);
         if (o.half && scene_.symmetry) model_->add_symmetry_plane(Vec3::UnitZ(), msh.node_set("symmetry-" + o.part));
     }
+    for (const auto& o : scene_.meshes) {
+        if (o.alpha > 0.0) model_->set_mass_damping(o.part, o.alpha);
+        model_->set_initial_velocity(part_nodes_[o.part], o.initial_velocity);
+        if (!o.symmetry_set.empty() && scene_.symmetry)
+            model_->add_symmetry_plane(Vec3::UnitZ(), msh.node_set(o.symmetry_set + "-" + o.part));
+        for (const auto& t : o.ties) {
+            const auto plate = std::find_if(scene_.plates.begin(), scene_.plates.end(), [&](const Plate& q) { return q.part == t.plate; });
+            if (plate == scene_.plates.end())
+                throw InputError(fmt::format("hand scene: '{}' is tied to plate '{}', which is not in the scene", o.part, t.plate));
+            OffsetTieOptions to = t.options;
+            to.release_time = t.release_time;
+            auto& tie = model_->add_force_provider(std::make_unique<OffsetTie>(
+                fmt::format("{} {} on {}", o.part, t.node_set, t.plate), msh.node_set(t.node_set + "-" + o.part), plate->motion(), to));
+            ties_[{o.part, t.plate}] = static_cast<const OffsetTie*>(&tie);
+        }
+    }
     if (scene_.gravity.norm() > 0.0) model_->set_gravity(scene_.gravity, scene_.gravity_curve);
     // Contact pairs.
     auto object_surface = [&](const std::string& part) {
         auto s = contact::ContactSurface::from_part(msh, part, material.at(part));
         for (const auto& o : scene_.objects)
             if (o.part == part && o.half && scene_.symmetry) s.remove_faces_on(msh.node_set("symmetry-" + o.part));
+        for (const auto& o : scene_.meshes)
+            if (o.part == part && !o.symmetry_set.empty() && scene_.symmetry) s.remove_faces_on(msh.node_set(o.symmetry_set + "-" + o.part));
         return s;
     };
     auto fingers_surface = [&] {  // every finger as one surface (one search, one stable-step bound)
@@ -220,6 +283,12 @@ contact::ContactInterface& HandModel::contact(const std::string& name) const {
     for (const auto& p : pairs_)
         if (p.name == name) return *p.contact;
     throw InputError(fmt::format("hand model: no contact pair '{}'", name));
+}
+
+const OffsetTie& HandModel::tie(const std::string& part, const std::string& plate) const {
+    const auto it = ties_.find({part, plate});
+    if (it == ties_.end()) throw InputError(fmt::format("hand model: '{}' is not tied to plate '{}'", part, plate));
+    return *it->second;
 }
 
 std::vector<int> HandModel::part_nodes(const std::string& part) const {

@@ -16,6 +16,7 @@
 // surface. The drum and the plates are rigid parts of the explicit model (ExplicitModel::
 // add_rigid_part) moved by their RigidMotion, contact masters through ContactSurface::rigid_part;
 // the finger roots follow the drum's motion (ExplicitModel::prescribe_motion).
+#include <limits>
 #include <map>
 #include <memory>
 #include <optional>
@@ -25,6 +26,7 @@
 
 #include "contact/contact.hpp"
 #include "contact/rigid_wall.hpp"
+#include "explicit/offset_tie.hpp"
 #include "explicit/solver.hpp"
 #include "hand/hand.hpp"
 #include "mesh/ellipsoid.hpp"
@@ -65,7 +67,37 @@ struct Plate {
     /// deeper limit (the first sessions' 30 mm) lets a node falling past the edge, within the edge
     /// tolerance and below the top, be shot up by the penalty spring (football_sweep README).
     double depth = 0.002;
-    RigidMotion motion() const { return RigidMotion::translation(direction, speed); }
+    /// A motion other than one direction with a speed schedule (then `direction` and `speed` are
+    /// not used): the perch of Ch 5 on the conveyor inclined, then declined
+    /// (RigidMotion::piecewise_translation). A scene with one cannot be seen_from a later time.
+    std::optional<RigidMotion> path;
+    RigidMotion motion() const { return path ? *path : RigidMotion::translation(direction, speed); }
+};
+
+/// Nodes of a mesh object held to a plate by penalty ties (explicit/offset_tie.hpp: each node held
+/// where the plate's motion carries its starting point) until `release_time`: the chicken's paws
+/// (J1) tied to the perch until the shackling time (thesis Sec 5.3; THESIS_CH4_5.md reconstruction 14).
+struct PlateTie {
+    std::string node_set;  // a node set of the object's mesh, as named in MeshObject::mesh
+    std::string plate;     // the part name of a scene plate
+    double release_time = std::numeric_limits<double>::infinity();
+    OffsetTieOptions options;  // the ties' frequency and damping (release_time is this struct's)
+};
+
+/// A deformable object given as a mesh in the scene's frame: every block of part `part` (tet4,
+/// tet10 or hex8), e.g. the chicken of Ch 5 (mesh/chicken.hpp) placed on its perch. Its node sets
+/// are renamed "<set>-<part>" in the model's mesh, as an ellipsoid object's. A half model names
+/// the node set on its cut plane (`symmetry_set`): those nodes get u_z = 0, the faces on it are
+/// left out of the contact surface, and the plane (z of those nodes, which must all lie on one
+/// plane z = const) is the mirror plane of Scene::mirror_contact.
+struct MeshObject {
+    std::string part = "object";
+    Mesh mesh;
+    ElasticMaterial material;
+    Vec3 initial_velocity = Vec3::Zero();
+    double alpha = 0.0;          // mass damping [1/s]
+    std::string symmetry_set;    // empty: a whole object
+    std::vector<PlateTie> ties;
 };
 
 /// Deepest penetration the mirror wall (Scene::mirror_contact) takes as contact [m]: two finger
@@ -103,6 +135,7 @@ struct Scene {
     HandSpec hand;
     HandTurn turn;
     std::vector<EllipsoidObject> objects;
+    std::vector<MeshObject> meshes;
     std::vector<Plate> plates;
     std::vector<ContactPair> contacts;
     Vec3 gravity = Vec3::Zero();
@@ -135,7 +168,8 @@ struct Scene {
 /// integral of its speed to t0 (the fingers undeformed, spinning with it), objects moved by their
 /// initial velocity x t0, plates by their motion to t0, and every curve (drum speed, turn, plate
 /// speeds, carriage, gravity) shifted by t0 (Curve::shifted). InputError when the hand's turn has
-/// turned before t0 or a carried object's carriage changed before t0 (neither can be skipped).
+/// turned before t0 or a carried object's carriage changed before t0 (neither can be skipped), and
+/// for a scene with mesh objects or plates on a `path` (not written yet).
 Scene seen_from(Scene scene, double t0);
 
 /// The built model. Owns the mesh's model; contact interfaces are reachable by pair name
@@ -154,6 +188,8 @@ public:
     };
     const std::vector<Pair>& pairs() const { return pairs_; }
     contact::ContactInterface& contact(const std::string& name) const;
+    /// The ties of mesh object `part` to plate `plate` (MeshObject::ties); InputError when none.
+    const OffsetTie& tie(const std::string& part, const std::string& plate) const;
     /// The mirror wall (Scene::mirror_contact); null without one.
     const contact::PlanarWall* mirror_wall() const { return mirror_wall_; }
 
@@ -180,6 +216,7 @@ private:
     Scene scene_;
     std::unique_ptr<ExplicitModel> model_;
     std::vector<Pair> pairs_;
+    std::map<std::pair<std::string, std::string>, const OffsetTie*> ties_;
     const contact::PlanarWall* mirror_wall_ = nullptr;
     RigidMotion drum_motion_;
     std::map<std::string, std::vector<double>> lumped_;  // per part: lumped node mass (aligned with part_nodes)

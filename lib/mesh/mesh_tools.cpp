@@ -226,6 +226,38 @@ void renumber_nodes(Mesh& mesh, std::span<const int> order) {
         for (int& a : b.connectivity) a = to[a];
     for (auto& [name, ids] : mesh.node_sets)
         for (int& a : ids) a = to[a];
+
+void reflect(Mesh& mesh, const Vec3& point, const Vec3& normal) {
+    if (!(normal.norm() > 0.0) || !normal.allFinite() || !point.allFinite())
+        throw InputError("reflect: the mirror plane's normal has zero length or is not finite");
+    const Vec3 n = normal.normalized();
+    for (Vec3& x : mesh.nodes) x -= 2.0 * (x - point).dot(n) * n;
+    // The new order of each element's nodes (new[i] = old[perm[i]]).
+    auto permutation = [](const ElementBlock& b) -> std::vector<int> {
+        switch (b.shape) {
+            case ElementShape::Point1: return {0};
+            case ElementShape::Beam2: return {0, 1};
+            case ElementShape::Tri3: return {0, 2, 1};
+            case ElementShape::Quad4: return {0, 3, 2, 1};
+            case ElementShape::Tet4: return {0, 2, 1, 3};
+            // Gmsh order: corners, edges 01, 12, 02, 03, 23, 13; corners 1 <-> 2 swaps 01 <-> 02, 23 <-> 13.
+            case ElementShape::Tet10: return {0, 2, 1, 3, 6, 5, 4, 7, 9, 8};
+            case ElementShape::Hex8: return {4, 5, 6, 7, 0, 1, 2, 3};
+            default:
+                throw InputError(fmt::format("reflect: block '{}' has {} elements, which reflect cannot renumber", b.part,
+                                             to_string(b.shape)));
+        }
+    };
+    for (auto& b : mesh.blocks) {
+        const std::vector<int> perm = permutation(b);
+        const int k = b.nodes_per_element();
+        std::vector<int> old(k);
+        for (int e = 0; e < b.size(); ++e) {
+            int* c = b.connectivity.data() + static_cast<std::size_t>(e) * k;
+            std::copy(c, c + k, old.begin());
+            for (int i = 0; i < k; ++i) c[i] = old[perm[i]];
+        }
+    }
 }
 
 }  // namespace fem

@@ -67,4 +67,13 @@ int node_bandwidth(const Mesh& mesh);
 /// order and element ids stay. InputError when `order` is not a permutation of the nodes.
 void renumber_nodes(Mesh& mesh, std::span<const int> order);
 
+/// Mirrors the mesh through the plane through `point` with normal `normal` (any length > 0), and
+/// renumbers each element's nodes so that solids keep a positive volume and shells their normal
+/// mirrored with them (a mirror image is left-handed: tet4/tet10 swap corners 1 and 2 and their
+/// edges, hex8 swaps its two faces 0123 and 4567, quad4/tri3 reverse their order). E.g. the half
+/// bird of Step 3 of chicken_shackling, meshed on its z >= 0 side, put on the hand's side z <= 0.
+/// Node numbers and node sets are kept. InputError for a zero normal or a shape without a rule
+/// (quad8, hex20).
+void reflect(Mesh& mesh, const Vec3& point, const Vec3& normal);
+
 }  // namespace fem

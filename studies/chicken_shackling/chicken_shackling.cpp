@@ -13,8 +13,9 @@
 //           load; their in-plane widths are calibrated to the printed stiffnesses (`--calibrate`),
 //           so the stiffness is a check of the calibration and the curvature of F(d) the prediction
 //   Step 3  Sec 5.3, 5.4.1, Tables 5-4..5-6, Figs 5-10..5-17: body-grasping and leg-gripping
-//           (the hand of Table 4-1 with a 4.5-inch finger E): to come (needs the hand, the perch
-//           and the shackle as parts)
+//           (the hand of Table 4-1 with a 4.5-inch finger E, the bird tied to its perch until
+//           0.9 s, the fixed shackle; run_grasp): the model and `--grasp`, not in the study run
+//           yet (README, Step 3)
 //   Step 4  Sec 5.4.2, Tables 5-3, 5-7, 5-8, Figs 5-19..5-22: the shackle rotating and inverting,
 //           the tet10 bird tied by its paws to a Belytschko-Tsay shell shackle driven through a
 //           rigid track (run_shackle), the drive ramped over 5 ms [R]: the rotating case to 0.13 s (the
@@ -28,6 +29,8 @@
 //       build/bin/chicken_shackling --calibrate   re-derives the limb widths of Step 2 (minutes)
 //       build/bin/chicken_shackling --shackle rotating|inverting [end time [mass scaling step [drive ramp]]]
 //                                                  one Step 4 run; writes shackle-<case>.dat here
+//       build/bin/chicken_shackling --grasp <case 1..5> [end time]
+//                                                  one Step 3 case of Table 5-4; writes grasp-case-<n>.dat here
 // Out:  build/results/chicken_shackling/{checks.json, runs.json, table-5-2.md, *.dat, *.vtu,
 //       shackle-{rotating,inverting}.{dat,pvd} with their VTU},
 //       figures/{fig-5-1-bird, fig-5-2-skeleton, fig-5-3-limbs, fig-5-19-bird, fig-5-20-fe-rotating-ramp,
@@ -44,6 +47,7 @@
 #include <cstring>
 #include <fmt/format.h>
 #include <iostream>
+#include <limits>
 #include <memory>
 #include <numbers>
 #include <string>
@@ -62,6 +66,7 @@
 #include "explicit/relaxation.hpp"
 #include "explicit/solver.hpp"
 #include "explicit/tet_groups.hpp"
+#include "hand/scene.hpp"
 #include "io/atomic_file.hpp"
 #include "io/surface_plot.hpp"
 #include "io/table.hpp"
@@ -293,6 +298,174 @@ void run_parallel(std::vector<std::function<void()>> jobs, unsigned workers) {
     for (auto& t : pool) t.join();
     for (auto& e : errors)
         if (e) std::rethrow_exception(e);
+}
+
+// --- Step 3: body-grasping and leg-gripping (Sec 5.3, 5.4.1, Tables 5-4..5-6) -------------------------------
+// The half model in the thesis's global frame (Table 5-6: origin at the drum's bottom centre, y up,
+// the symmetry plane z = 184 mm): the hand of Table 4-1 with finger E 4.5 inch (alpha 180 1/s as the
+// other 4.5-inch fingers, Table 5-6), the half Table 5-1 bird placed at Table 5-6's centroid with
+// theta_b = 7.8 deg and mirrored onto the hand's side of the plane (z <= 184 mm; lib/mesh
+// reflect), its paws tied to the perch (OffsetTie on the perch's path) until the shackling time
+// 0.9 s, gravity from 0.9 s, the perch carried on the conveyor 5 deg up to the apex at 0.7 s then
+// 30 deg down (Table 5-6 velocities; signs: THESIS_CH4_5.md reconstruction 15), the shackle as a
+// fixed rigid plate from its fixed end to the gripper (reconstruction 16). Reconstructions of this
+// model [R] (README, Step 3): the perch is a rigid flat plate at the paws' lowest point (the thesis's
+// Al tube, 25 mm, only carries the tied paws until 0.9 s); the shackle's gripper slot (Figs 5-6/5-7)
+// is not modelled (a flat plate: the legs held by friction only); the side holder is left out (its
+// place is not printed); no self-contact of the bird.
+constexpr double kConveyorPeak = 0.7, kShacklingTime = 0.9, kGraspEnd = 1.1;  // Table 5-6 [s]
+const Vec3 kConveyorUp(-0.4723, 0.04132, 0.0), kConveyorDown(-0.4105, -0.23705, 0.0);  // Table 5-6 [m/s]
+const Vec3 kGripper(0.0, -0.026, 0.130), kShackleFixedEnd(-0.187, -0.135, 0.116);       // Table 5-6 [m]
+constexpr double kSymmetryZ = 0.184;   // Table 5-6 (THESIS_CH4_5.md Sec 10 item 8)
+constexpr double kPerchWidth = 25.0 * mm;  // the tube's diameter [R, reconstruction 14]
+// Bird mesh of the grasp model [R]: Step 4's sizes (20 mm body, 5 mm leg), straight-sided tet10.
+constexpr double kGraspBodySize = 20.0 * mm, kGraspLegSize = 5.0 * mm;
+constexpr double kGraspMassScalingDt = 2.5e-6;  // as Step 4 (selective; the added mass is in runs.json)
+constexpr double kFriction = 0.4;  // Table 5-6 0.4/0.3 with c_d = 0: mu = mu_s (THESIS_CH4_5.md Sec 10 item 1)
+
+/// Table 5-4: the drum speed [rad/s] of each case over 0-0.55, 0.55-0.85, 0.85-1.1 s.
+struct GraspCase {
+    int number;
+    std::array<double, 3> rpm;
+};
+constexpr std::array<GraspCase, 5> kTable54 = {{{1, {35, 35, 35}}, {2, {40, 40, 40}}, {3, {45, 45, 45}}, {4, {45, 20, 40}}, {5, {45, 19, 45}}}};
+
+/// The half bird of Table 5-1 in the global frame of Table 5-6, on the hand's side of the symmetry
+/// plane (Gmsh: call on one thread).
+Mesh grasp_bird_mesh(const chicken::Chicken& bird) {
+    Mesh m = chicken::chicken_mesh(bird, {.body_size = kGraspBodySize, .leg_size = kGraspLegSize, .order = 2, .half = true,
+                                          .curved = false});
+    chicken::place(m, kCentroid55, kThetaB);           // symmetry plane z = 184 mm, bird on z >= 184 mm
+    reflect(m, kCentroid55, Vec3::UnitZ());            // onto the hand's side, z <= 184 mm
+    return m;
+}
+
+/// The scene of case `c` (Table 5-4) with the bird mesh `bird` (grasp_bird_mesh) of density `density`.
+hand::Scene grasp_scene(const GraspCase& c, const Mesh& bird, double density) {
+    hand::Scene s;
+    auto& e = s.hand.fingers.at(4);
+    if (e.name != "E") throw InputError("grasp scene: Table 4-1's fifth finger is not E");
+    e.length = 4.5 * units::inch, e.alpha = 180.0;  // Sec 5.3 / Table 5-6
+    s.hand.drum.omega = Curve::steps({{0.0, c.rpm[0] * units::rpm}, {0.55, c.rpm[1] * units::rpm}, {0.85, c.rpm[2] * units::rpm}},
+                                     fmt::format("Table 5-4 case {}", c.number));
+    hand::MeshObject o;
+    o.part = "chicken";
+    o.mesh = bird;
+    o.material = chicken::material(density);
+    o.initial_velocity = kConveyorUp;  // Table 5-6: the bird starts with the conveyor
+    o.symmetry_set = "symmetry";
+    o.ties = {{.node_set = "paw", .plate = "perch", .release_time = kShacklingTime}};
+    s.meshes.push_back(o);
+    // The perch: a rigid plate under the paws (its top at the paws' lowest point), across the leg.
+    double paw_y = std::numeric_limits<double>::infinity();
+    Vec3 paw = Vec3::Zero();
+    for (int n : bird.node_set("paw")) paw_y = std::min(paw_y, bird.nodes[n].y()), paw += bird.nodes[n];
+    paw /= static_cast<double>(bird.node_set("paw").size());
+    hand::Plate perch;
+    perch.part = "perch";
+    perch.centre = Vec3(paw.x(), paw_y, kSymmetryZ - 50.0 * mm);
+    perch.u = kPerchWidth * Vec3::UnitX(), perch.v = -100.0 * mm * Vec3::UnitZ();  // normal +y
+    perch.nu = 2, perch.nv = 8;
+    perch.path = RigidMotion::piecewise_translation({{0.0, kConveyorUp}, {kConveyorPeak, kConveyorDown}}, "Table 5-6 conveyor");
+    s.plates.push_back(perch);
+    // The shackle: fixed, from the fixed-end line to the gripper, 68 mm wide (z 116..184 mm).
+    hand::Plate shackle;
+    shackle.part = "shackle";
+    const Vec3 along(kGripper.x() - kShackleFixedEnd.x(), kGripper.y() - kShackleFixedEnd.y(), 0.0);
+    shackle.centre = Vec3(0.5 * (kGripper.x() + kShackleFixedEnd.x()), 0.5 * (kGripper.y() + kShackleFixedEnd.y()),
+                          0.5 * (kShackleFixedEnd.z() + kSymmetryZ));
+    shackle.u = along, shackle.v = -(kSymmetryZ - kShackleFixedEnd.z()) * Vec3::UnitZ();  // u x v points up, to the bird
+    shackle.nu = 12, shackle.nv = 4;
+    shackle.speed = Curve::constant(0.0);
+    shackle.depth = 5.0 * mm;
+    s.plates.push_back(shackle);
+    const contact::FrictionLaw mu{kFriction, kFriction, 0.0};
+    s.contacts = {{"fingers", "chicken", mu, true}, {"chicken", "perch", mu}, {"chicken", "shackle", mu}, {"chicken", "drum", mu}};
+    s.mirror_contact = true;
+    s.gravity = Vec3(0.0, -9.81, 0.0);
+    s.gravity_curve = Curve::step(kShacklingTime);
+    return s;
+}
+
+struct GraspRun {
+    int case_number = 0;
+    std::vector<double> time, theta_b, tip_e_y, finger_stress, finger_force;
+    std::vector<Vec3> body, perch, paw;
+    RunSummary summary;
+    double seconds = 0.0;
+};
+
+/// A 3D picture's data (io/surface_plot.hpp): the outer faces of the bird (<prefix>-bird.dat) and of
+/// the fingers, drum, perch and shackle (<prefix>-hand.dat) at positions x [mm] (grasp.gp draws them).
+void write_grasp_surfaces(const std::string& prefix, const hand::HandModel& hm, std::span<const Vec3> x) {
+    const Vec3 light(0.3, 0.8, 1.0);
+    std::vector<std::array<Vec3, 3>> bird, hand;
+    auto add = [&](const contact::ContactSurface& surface, std::vector<std::array<Vec3, 3>>& to) {
+        for (const auto& sg : surface.segments) {
+            to.push_back({x[sg.n[0]], x[sg.n[1]], x[sg.n[2]]});
+            if (sg.count == 4) to.push_back({x[sg.n[0]], x[sg.n[2]], x[sg.n[3]]});
+        }
+    };
+    add(contact::ContactSurface::from_part(hm.mesh(), "chicken", chicken::material(1000.0)), bird);
+    for (const auto& f : hm.scene().hand.fingers)
+        add(contact::ContactSurface::from_part(hm.mesh(), "finger-" + f.name, hm.scene().hand.rubber), hand);
+    for (const char* part : {"drum", "perch", "shackle"}) add(contact::ContactSurface::rigid_part(hm.mesh(), part, 1e-3), hand);
+    io::write_shaded_triangles(prefix + "-bird.dat", bird, light, 1000.0);
+    io::write_shaded_triangles(prefix + "-hand.dat", hand, light, 1000.0);
+}
+
+/// One case of Table 5-4 from 0 to end_time (Gmsh-free: the bird mesh is given).
+GraspRun run_grasp(const GraspCase& c, const Mesh& bird, double density, double end_time, const std::filesystem::path& pvd) {
+    hand::HandModel hm(grasp_scene(c, bird, density));
+    const Mesh& mesh = hm.mesh();
+    const int centre = mesh.node_set("body_center-chicken")[0], head = mesh.node_set("head-chicken")[0];
+    const int tip = hm.tip_node("E");
+    const auto& paws = mesh.node_set("paw-chicken");
+    ExplicitOptions o;
+    o.end_time = end_time;
+    o.mass_scaling_dt = kGraspMassScalingDt;
+    o.history_interval = 1e-3;
+    o.history_nodes = {{"body centre", centre}, {"finger E tip", tip}};
+    o.name = fmt::format("grasp case {} to {:.3f} s", c.number, end_time);
+    o.print_summary = false;
+    o.progress = false;
+    if (!pvd.empty()) o.pvd_path = pvd, o.vtu_interval = 0.05;
+    ExplicitSolver solver(hm.model(), o);
+    GraspRun r;
+    r.case_number = c.number;
+    const auto& fingers_on_bird = hm.contact("fingers on chicken");
+    write_grasp_surfaces(fmt::format("grasp-case-{}-start", c.number), hm, mesh.nodes);
+    solver.observer = [&](const ExplicitSolver& sv) {
+        const NodalState& s = sv.state();
+        r.time.push_back(sv.time());
+        r.theta_b.push_back(chicken::theta_b(s.x[head], s.x[centre]));
+        r.tip_e_y.push_back(s.x[tip].y() - s.X[tip].y());
+        double vm = 0.0;
+        for (const char* f : {"A", "B", "C", "D", "E"}) vm = std::max(vm, sv.max_von_mises(fmt::format("finger-{}", f)));
+        r.finger_stress.push_back(vm);
+        r.finger_force.push_back(fingers_on_bird.force_on_master().norm());
+        r.body.push_back(s.x[centre]);
+        r.perch.push_back(hm.plate_centre("perch", sv.time()));
+        Vec3 p = Vec3::Zero();
+        for (int n : paws) p += s.x[n] / static_cast<double>(paws.size());
+        r.paw.push_back(p);
+    };
+    const auto t0 = std::chrono::steady_clock::now();
+    r.summary = solver.run();
+    r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    write_grasp_surfaces(fmt::format("grasp-case-{}-end", c.number), hm, solver.state().x);
+    return r;
+}
+
+/// The run's histories, one row per 1 ms (mm, deg, MPa, N).
+void write_grasp_dat(const std::filesystem::path& path, const GraspRun& r) {
+    std::string text = "# t [s]  body x y z [mm]  perch x y [mm]  paw x y z [mm]  theta_b [deg]  finger E tip dy [mm]  finger von Mises [MPa]  fingers on bird [N]\n";
+    for (std::size_t k = 0; k < r.time.size(); ++k)
+        text += fmt::format("{:.4f} {:.3f} {:.3f} {:.3f} {:.3f} {:.3f} {:.3f} {:.3f} {:.3f} {:.3f} {:.4f} {:.4f} {:.5g}\n", r.time[k],
+                            r.body[k].x() / mm, r.body[k].y() / mm, r.body[k].z() / mm, r.perch[k].x() / mm, r.perch[k].y() / mm,
+                            r.paw[k].x() / mm, r.paw[k].y() / mm, r.paw[k].z() / mm, r.theta_b[k] / deg, r.tip_e_y[k] / mm,
+                            r.finger_stress[k] / 1e6, r.finger_force[k]);
+    io::write_text_file(path, text);
 }
 
 // --- Step 4: the shackle rotating and inverting FE model (Sec 5.4.2) ----------------------------------------
@@ -974,6 +1147,33 @@ int main(int argc, char** argv) {
                     fmt::print("t {:.3f}  chicken {:.2f}  shackle {:.2f}  paw {:.2f}  rel {:.2f}  rel_paw {:.2f} mm  vm {:.2f} MPa\n", r.time[k],
                                r.chicken[k] / mm, r.shackle[k] / mm, r.paw[k] / mm, r.relative[k] / mm, r.relative_paw[k] / mm, r.stress[k] / 1e6);
                 fmt::print("{}\n", shackle_peaks_text(r));
+                return 0;
+            });
+        }
+    // --grasp <case 1..5> [end time]: one Step 3 case of Table 5-4 alone (not in the study run yet:
+    // README, Step 3); writes grasp-case-<n>.dat and grasp-case-<n>.pvd here.
+    for (int i = 1; i < argc; ++i)
+        if (std::strcmp(argv[i], "--grasp") == 0) {
+            const int number = i + 1 < argc ? std::atoi(argv[i + 1]) : 4;
+            const double end = i + 2 < argc ? std::atof(argv[i + 2]) : kGraspEnd;
+            if (number < 1 || number > 5 || !(end > 0.0)) {
+                std::cerr << "chicken_shackling --grasp: the case is 1..5 (Table 5-4) and the end time positive\n";
+                return 2;
+            }
+            return run_program("chicken_shackling --grasp", [&] {
+                const chicken::Chicken bird = chicken::table_5_1_chicken();
+                const double density = chicken::density_for_mass(bird);
+                const Mesh mesh = grasp_bird_mesh(bird);  // a GmshSession gives the caller's threads back
+                fmt::print("grasp bird: {} nodes, {} tet10, density {:.1f} kg/m3\n", mesh.node_count(), mesh.element_count(), density);
+                const GraspRun r = run_grasp(kTable54[number - 1], mesh, density, end, fmt::format("grasp-case-{}.pvd", number));
+                fmt::print("{}\n", r.summary.text());
+                write_grasp_dat(fmt::format("grasp-case-{}.dat", number), r);
+                for (std::size_t k = 0; k < r.time.size(); k += 10)
+                    fmt::print("t {:.3f}  body ({:.1f}, {:.1f}) mm  perch ({:.1f}, {:.1f}) mm  theta_b {:.2f} deg  E tip dy {:.2f} mm  "
+                               "vm {:.3f} MPa  F {:.3g} N\n",
+                               r.time[k], r.body[k].x() / mm, r.body[k].y() / mm, r.perch[k].x() / mm, r.perch[k].y() / mm,
+                               r.theta_b[k] / deg, r.tip_e_y[k] / mm, r.finger_stress[k] / 1e6, r.finger_force[k]);
+                fmt::print("wall {:.1f} s\n", r.seconds);
                 return 0;
             });
         }

@@ -118,3 +118,40 @@ TEST(RigidMotion, CompositionVelocitiesMatchFiniteDifferences) {
         EXPECT_EQ(compose(outer, inner.then(middle)).position(X, t), m.position(X, t));
     }
 }
+
+// The perch of thesis Table 5-6 on its conveyor: 0.4741 m/s inclined 5 degrees up to the apex at
+// 0.7 s, then declined 30 degrees (the x sign: travel toward the drum, THESIS_CH4_5.md
+// reconstruction 15). Exact positions at and between the corners, the later velocity at a corner,
+// at rest before the first segment, and bad input refused.
+TEST(RigidMotion, PiecewiseTranslationIsThePerchPathOfTable56) {
+    const Vec3 v1(-0.4723, 0.04132, 0), v2(-0.4105, -0.23705, 0);
+    EXPECT_NEAR(v1.norm(), 0.4741, 1e-4);  // the printed conveyor speed, at 5.0 and 30.0 degrees
+    EXPECT_NEAR(v2.norm(), 0.4741, 1e-4);
+    EXPECT_NEAR(std::atan2(v1.y(), -v1.x()) * 180 / pi, 5.0, 0.01);
+    EXPECT_NEAR(std::atan2(-v2.y(), -v2.x()) * 180 / pi, 30.0, 0.01);
+    const RigidMotion perch = RigidMotion::piecewise_translation({{0.0, v1}, {0.7, v2}}, "perch");
+    const Vec3 top(0.387, -0.039, 0.184);  // Table 5-6: perch top centre at t = 0
+    EXPECT_EQ(perch.position(top, 0.0), top);
+    EXPECT_NEAR((perch.position(top, 0.35) - (top + 0.35 * v1)).norm(), 0.0, 1e-15);
+    const Vec3 apex = top + 0.7 * v1;
+    EXPECT_NEAR((perch.position(top, 0.7) - apex).norm(), 0.0, 1e-15);
+    // THESIS_CH4_5.md inconsistency 6: the apex is 56.4 mm from the drum centre, not 2 in (50.8).
+    EXPECT_NEAR(apex.x(), 0.0564, 1e-4);
+    EXPECT_NEAR((perch.position(top, 0.9) - (apex + 0.2 * v2)).norm(), 0.0, 1e-15);
+    EXPECT_NEAR((perch.position(top, 1.1) - (apex + 0.4 * v2)).norm(), 0.0, 1e-15);  // the last segment held
+    EXPECT_EQ(perch.velocity(top, 0.3), v1);
+    EXPECT_EQ(perch.velocity(top, 0.7), v2);  // at a corner: the later velocity
+    EXPECT_EQ(perch.velocity(top, 1.05), v2);
+    EXPECT_EQ(perch.angular_velocity(0.8), Vec3::Zero());
+    for (double t : {0.2, 0.69, 0.71, 0.95}) EXPECT_NEAR((perch.velocity(top, t) - fd_velocity(perch, top, t)).norm(), 0.0, 1e-9) << t;
+
+    // Starting later: at rest before the first time; three segments.
+    const RigidMotion late = RigidMotion::piecewise_translation({{0.5, Vec3(1, 0, 0)}, {1.0, Vec3(0, 2, 0)}, {1.5, Vec3::Zero()}});
+    EXPECT_EQ(late.position(top, 0.4), top);
+    EXPECT_NEAR((late.position(top, 2.0) - (top + Vec3(0.5, 1.0, 0))).norm(), 0.0, 1e-15);
+
+    EXPECT_THROW(RigidMotion::piecewise_translation({}), InputError);
+    EXPECT_THROW(RigidMotion::piecewise_translation({{0.7, v1}, {0.7, v2}}), InputError);
+    EXPECT_THROW(RigidMotion::piecewise_translation({{0.0, v1}, {std::nan(""), v2}}), InputError);
+    EXPECT_THROW(RigidMotion::piecewise_translation({{0.0, Vec3(INFINITY, 0, 0)}}), InputError);
+}

@@ -155,4 +155,50 @@ TEST(MeshTools, RenumberedTet10BlocksKeepTheirElementsAndSets) {
     EXPECT_GT(width_before, 200);
     EXPECT_LT(width_after, 4 * 81);
     EXPECT_LT(width_after, width_before / 2);
+
+// A mirror image keeps its solids right-handed: a tet10 box, a hex8 box and a quad4 plate mirrored
+// through a skew plane pass validate() (positive Jacobian at every element's centre), their volumes
+// are kept, a quad's normal is the mirror of the old one, and mirroring twice gives the mesh back.
+TEST(MeshTools, ReflectKeepsSolidsPositiveAndMirrorsNormals) {
+    const Vec3 point(0.01, -0.02, 0.184), normal(0.2, 0.1, 1.0);
+    const Vec3 n = normal.normalized();
+    auto volume = [](const Mesh& m) {
+        double v = 0.0;
+        for (const auto& b : m.blocks)
+            for (int e = 0; e < b.size(); ++e) {
+                const auto x = m.element_coordinates(static_cast<int>(&b - m.blocks.data()), e);
+                if (b.shape == ElementShape::Tet10 || b.shape == ElementShape::Tet4) v += (x[1] - x[0]).cross(x[2] - x[0]).dot(x[3] - x[0]) / 6.0;
+            }
+        return v;
+    };
+    for (const ElementShape shape : {ElementShape::Tet10, ElementShape::Tet4}) {
+        Mesh m = box_tets(0.03, 0.02, 0.01, 3, 2, 2, shape);
+        const Mesh before = m;
+        reflect(m, point, normal);
+        EXPECT_NO_THROW(validate(m));
+        EXPECT_NEAR(volume(m), 0.03 * 0.02 * 0.01, 1e-15);
+        EXPECT_NEAR(volume(before), volume(m), 1e-15);
+        for (int i = 0; i < m.node_count(); ++i)  // each node is the mirror image of its old position
+            EXPECT_NEAR(((m.nodes[i] + before.nodes[i]) / 2 - point).dot(n), 0.0, 1e-15);
+        reflect(m, point, normal);
+        for (int i = 0; i < m.node_count(); ++i) EXPECT_NEAR((m.nodes[i] - before.nodes[i]).norm(), 0.0, 1e-15);
+        EXPECT_EQ(m.blocks[0].connectivity, before.blocks[0].connectivity);
+        EXPECT_EQ(m.node_sets, before.node_sets);
+    }
+    Mesh hex = box_hex8(0.03, 0.02, 0.01, 3, 2, 1);
+    reflect(hex, point, normal);
+    EXPECT_NO_THROW(validate(hex));
+
+    Mesh plate = rectangle_quads(0.02, 0.01, 2, 1);  // normal +z as numbered
+    auto quad_normal = [](const Mesh& m) {
+        const auto x = m.element_coordinates(0, 0);
+        return Vec3((x[2] - x[0]).cross(x[3] - x[1]).normalized());
+    };
+    const Vec3 n0 = quad_normal(plate);
+    reflect(plate, point, normal);
+    EXPECT_NEAR((quad_normal(plate) - (n0 - 2 * n0.dot(n) * n)).norm(), 0.0, 1e-12);
+
+    Mesh hex20 = box_hex20(0.01, 0.01, 0.01, 1, 1, 1);
+    EXPECT_THROW(reflect(hex20, point, normal), InputError);
+    EXPECT_THROW(reflect(plate, point, Vec3::Zero()), InputError);
 }
