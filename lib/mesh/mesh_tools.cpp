@@ -226,6 +226,7 @@ void renumber_nodes(Mesh& mesh, std::span<const int> order) {
         for (int& a : b.connectivity) a = to[a];
     for (auto& [name, ids] : mesh.node_sets)
         for (int& a : ids) a = to[a];
+}
 
 void reflect(Mesh& mesh, const Vec3& point, const Vec3& normal) {
     if (!(normal.norm() > 0.0) || !normal.allFinite() || !point.allFinite())

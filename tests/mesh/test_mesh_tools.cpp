@@ -155,6 +155,7 @@ TEST(MeshTools, RenumberedTet10BlocksKeepTheirElementsAndSets) {
     EXPECT_GT(width_before, 200);
     EXPECT_LT(width_after, 4 * 81);
     EXPECT_LT(width_after, width_before / 2);
+}
 
 // A mirror image keeps its solids right-handed: a tet10 box, a hex8 box and a quad4 plate mirrored
 // through a skew plane pass validate() (positive Jacobian at every element's centre), their volumes
