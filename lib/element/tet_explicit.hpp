@@ -130,6 +130,18 @@ void internal_force(const TetPacked<4>& p, const hex8::Hex8Material& mat, const 
 void internal_force(const TetPackedBlock<4>& p, const hex8::Hex8Material& mat, const hex8::Lanes (&u)[3][10],
                     const hex8::Lanes (&v)[3][10], TetKernelResultBlock<10>& out, bool viscous_forces = false);
 
+/// The corner coordinates x (nodes 0-3, for the Table 2-1 step), displacements u = x - X and
+/// velocities v of the N nodes of kLanes elements, gathered into lanes: component i of node a of the
+/// element in lane l at [i][a][l]. xs, Xs, vs are node-major (3 doubles per node), conn[l] the nodes
+/// of the element in lane l; lanes at and beyond `lanes` repeat the last element. With AVX-512 each
+/// node's (x, y, z) triples of the eight lanes are transposed in registers and the lane vectors
+/// stored whole (scalar stores into lanes that the kernel reads back at once as vectors stall the
+/// store-to-load forwarding: hex8::gather, whose method this is). Data movement and one IEEE
+/// subtraction per lane either way: the same bits.
+template <int N>
+void gather(const double* xs, const double* Xs, const double* vs, const std::array<int, N>* conn, int lanes,
+            hex8::Lanes (&x)[3][4], hex8::Lanes (&u)[3][N], hex8::Lanes (&v)[3][N]);
+
 /// Table 2-1 critical step of the tetrahedra of a block on their current corner nodes x[i][a]
 /// (a = 0..3): fem::cfl::solid_time_step(fem::cfl::tetrahedron_length(x), wave_speed, trD, bulk)
 /// per lane, to round-off, with trD the kernel's volumetric strain rate (zeros when the bulk

@@ -174,18 +174,7 @@ GroupForceResult TetGroup<N, Q>::internal_forces(NodalState& s, bool compute_dt)
                 const char* next = reinterpret_cast<const char*>(&packed_[std::min(kb / W + 2, last_block)]);
                 for (std::size_t b = 0; b < sizeof(tet::TetPackedBlock<Q>); b += 64) __builtin_prefetch(next + b);
             }
-            for (int l = 0; l < W; ++l) {
-                const auto& cn = kconn_[kb + std::min(l, lanes - 1)];  // spare lanes repeat the last element
-                for (int a = 0; a < N; ++a) {
-                    const std::size_t o = 3 * static_cast<std::size_t>(cn[a]);
-                    for (int i = 0; i < 3; ++i) {
-                        u[i][a][l] = xs[o + i] - Xs[o + i];
-                        v[i][a][l] = vs[o + i];
-                    }
-                    if (a < 4)
-                        for (int i = 0; i < 3; ++i) x[i][a][l] = xs[o + i];
-                }
-            }
+            tet::gather<N>(xs, Xs, vs, &kconn_[kb], lanes, x, u, v);  // spare lanes repeat the last element
             tet::internal_force(packed_[kb / W], kmat_, u, v, r, book_viscous);
             // Table 2-1 tetrahedron (minimum altitude of the corner tetrahedron) on the current
             // coordinates, with the bulk-viscosity Q term.
@@ -198,21 +187,28 @@ GroupForceResult TetGroup<N, Q>::internal_forces(NodalState& s, bool compute_dt)
                     if (p.bad_k < 0) p.bad_k = k;
                     continue;  // no force from an inverted element (the run stops)
                 }
-                // Direct scatter: no other thread touches these nodes now (colouring).
+                // Direct scatter: no other thread touches these nodes now (colouring). The viscous
+                // part in the same pass over the nodes (each array gets its sums in the same order).
                 const auto& cn = kconn_[k];
-                for (int a = 0; a < N; ++a) {
-                    Vec3& f = fs[cn[a]];
-                    f[0] += r.f[0][a][l];
-                    f[1] += r.f[1][a][l];
-                    f[2] += r.f[2][a][l];
-                }
-                if (book_viscous)
+                if (book_viscous) {
                     for (int a = 0; a < N; ++a) {
-                        Vec3& f = fvs[cn[a]];
-                        f[0] += r.fv[0][a][l];
-                        f[1] += r.fv[1][a][l];
-                        f[2] += r.fv[2][a][l];
+                        Vec3& f = fs[cn[a]];
+                        Vec3& fv = fvs[cn[a]];
+                        f[0] += r.f[0][a][l];
+                        f[1] += r.f[1][a][l];
+                        f[2] += r.f[2][a][l];
+                        fv[0] += r.fv[0][a][l];
+                        fv[1] += r.fv[1][a][l];
+                        fv[2] += r.fv[2][a][l];
                     }
+                } else {
+                    for (int a = 0; a < N; ++a) {
+                        Vec3& f = fs[cn[a]];
+                        f[0] += r.f[0][a][l];
+                        f[1] += r.f[1][a][l];
+                        f[2] += r.f[2][a][l];
+                    }
+                }
                 p.ie += r.strain_energy[l];
                 p.visc += r.viscous_power[l];
                 von_mises_sq_[k] = r.von_mises_sq[l];

@@ -52,7 +52,9 @@
 //
 // Meshes: the whole bird (`chicken_mesh`, full or half model) and each limb alone with its joint
 // features (`limb_mesh`). Tetrahedra by Gmsh (Delaunay + optimiser), 10-node ones with mid-edge
-// nodes on the true geometry. Node sets of the bird:
+// nodes on the true geometry. The bird's nodes are in reverse Cuthill-McKee order
+// (mesh_tools.hpp: Gmsh's own order puts every mid-edge node after all corner nodes, which made the
+// explicit gather / scatter of the tet10 bird cost more than its element kernel). Node sets of the bird:
 //   "paw"          the paw end faces of the legs (J1, tied to the perch / gripper);
 //   "symmetry"     the nodes on z = 0 (half model only);
 //   "body_center"  one node at the body ellipsoid's centre (an embedded mesh point);

@@ -9,6 +9,9 @@
 #include <sys/socket.h>
 #include <sys/wait.h>
 #include <unistd.h>
+#ifdef _OPENMP
+#include <omp.h>
+#endif
 
 #include <algorithm>
 #include <cerrno>
@@ -645,13 +648,32 @@ std::string reply_of_reader(const std::filesystem::path& path, const std::string
 }
 }  // namespace
 
-GmshSession::GmshSession() {
+namespace {
+// The calling thread's OpenMP thread count (1 without OpenMP), and setting it back (GmshSession).
+int omp_threads() {
+#ifdef _OPENMP
+    return omp_get_max_threads();
+#else
+    return 1;
+#endif
+}
+void set_omp_threads(int n) {
+#ifdef _OPENMP
+    omp_set_num_threads(n);
+#else
+    (void)n;
+#endif
+}
+}  // namespace
+
+GmshSession::GmshSession() : caller_threads_(omp_threads()) {
     gmsh_mutex().lock();
     if (gmsh_depth++ == 0) {
         try {
             start_gmsh();
         } catch (...) {
             --gmsh_depth;
+            set_omp_threads(caller_threads_);
             gmsh_mutex().unlock();
             throw;
         }
@@ -665,6 +687,7 @@ GmshSession::~GmshSession() {
         } catch (...) {  // a destructor must not throw; Gmsh has nothing left to give back
         }
     }
+    set_omp_threads(caller_threads_);  // Gmsh set its own (gmsh.hpp)
     gmsh_mutex().unlock();
 }
 

@@ -35,12 +35,21 @@ namespace fem {
 /// first live session initializes Gmsh, quiet (General.Terminal = 0, one thread), the last one
 /// finalizes it; a session holds a process-wide recursive lock, so sessions nest within a thread
 /// and serialize across threads. Every use of the gmsh API in the library goes through one.
+///
+/// The caller's OpenMP thread count survives the session: Gmsh calls omp_set_num_threads on the
+/// calling thread (at gmsh::initialize, on the option General.NumThreads and in every mesh
+/// generation; seen in gdb), which left every later parallel region of a program that meshes and
+/// then solves on the same thread on one thread. A session saves omp_get_max_threads() when it starts
+/// and restores it when it ends (inside a session the count is Gmsh's).
 class GmshSession {
 public:
     GmshSession();
     ~GmshSession();
     GmshSession(const GmshSession&) = delete;
     GmshSession& operator=(const GmshSession&) = delete;
+
+private:
+    int caller_threads_ = 1;  // omp_get_max_threads() of the calling thread when the session started
 };
 
 /// Reads a Gmsh .msh file (2.2 or 4.1, ASCII or binary) into a Mesh (see above for the rules).

@@ -1136,11 +1136,9 @@ int main(int argc, char** argv) {
             const double scaling = i + 3 < argc ? std::atof(argv[i + 3]) : kShackleMassScalingDt;
             const double ramp = i + 4 < argc ? std::atof(argv[i + 4]) : 0.0;
             return run_program("chicken_shackling --shackle", [&] {
-                const int threads = par::threads();  // the caller's, before Gmsh sets one (README, Step 4)
                 const chicken::Chicken bird = chicken::table_5_3_chicken();
-                const double density = chicken::density_for_mass(bird);  // Gmsh too
+                const double density = chicken::density_for_mass(bird);
                 const ShackleInput input(bird);
-                par::set_threads(threads);
                 const ShackleRun r = run_shackle(input, density, rotating, end,
                                                   fmt::format("shackle-{}.pvd", rotating ? "rotating" : "inverting"), scaling, ramp, end);
                 fmt::print("{}\n", r.summary.text());
@@ -1163,11 +1161,9 @@ int main(int argc, char** argv) {
                 return 2;
             }
             return run_program("chicken_shackling --grasp", [&] {
-                const int threads = par::threads();  // the caller's, before Gmsh sets one (README, Step 4)
                 const chicken::Chicken bird = chicken::table_5_1_chicken();
                 const double density = chicken::density_for_mass(bird);
-                const Mesh mesh = grasp_bird_mesh(bird);
-                par::set_threads(threads);
+                const Mesh mesh = grasp_bird_mesh(bird);  // a GmshSession gives the caller's threads back
                 fmt::print("grasp bird: {} nodes, {} tet10, density {:.1f} kg/m3\n", mesh.node_count(), mesh.element_count(), density);
                 const GraspRun r = run_grasp(kTable54[number - 1], mesh, density, end, fmt::format("grasp-case-{}.pvd", number));
                 fmt::print("{}\n", r.summary.text());

@@ -262,6 +262,42 @@ void group_against_element_by_element(ElementShape shape) {
     EXPECT_EQ(r1.dt_element, dt_element);
 }
 
+// tet::gather (AVX-512 transposition where the processor has it): every lane holds exactly its
+// element's nodal values, x - X by one IEEE subtraction, and the spare lanes of a short block repeat
+// its last element. The last node of the arrays is used (the masked loads must not read past it).
+template <int N>
+void gather_puts_each_element_in_its_lane() {
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<double> g(-1.0, 1.0);
+    const int nodes = 40;
+    std::vector<double> xs(3 * nodes), Xs(3 * nodes), vs(3 * nodes);
+    for (auto* a : {&xs, &Xs, &vs})
+        for (double& d : *a) d = g(rng);
+    std::vector<std::array<int, N>> conn(hex8::kLanes);
+    std::uniform_int_distribution<int> pick(0, nodes - 1);
+    for (auto& c : conn)
+        for (int& n : c) n = pick(rng);
+    conn[2][N - 1] = nodes - 1;
+    for (int lanes : {hex8::kLanes, 3}) {
+        alignas(hex8::kLanesAlign) hex8::Lanes x[3][4], u[3][N], v[3][N];
+        tet::gather<N>(xs.data(), Xs.data(), vs.data(), conn.data(), lanes, x, u, v);
+        for (int l = 0; l < hex8::kLanes; ++l) {
+            const auto& c = conn[std::min(l, lanes - 1)];
+            for (int a = 0; a < N; ++a)
+                for (int i = 0; i < 3; ++i) {
+                    const std::size_t o = 3 * static_cast<std::size_t>(c[a]) + i;
+                    EXPECT_EQ(u[i][a][l], xs[o] - Xs[o]) << lanes << " " << l << " " << a;
+                    EXPECT_EQ(v[i][a][l], vs[o]) << lanes << " " << l << " " << a;
+                    if (a < 4) {
+                        EXPECT_EQ(x[i][a][l], xs[o]) << lanes << " " << l << " " << a;
+                    }
+                }
+        }
+    }
+}
+TEST(TetFastKernel, Tet4GatherPutsEachElementInItsLane) { gather_puts_each_element_in_its_lane<4>(); }
+TEST(TetFastKernel, Tet10GatherPutsEachElementInItsLane) { gather_puts_each_element_in_its_lane<10>(); }
+
 TEST(TetFastKernel, Tet4GroupOrderingAndThreadsKeepResults) { group_against_element_by_element<Tet4Group>(ElementShape::Tet4); }
 TEST(TetFastKernel, Tet10GroupOrderingAndThreadsKeepResults) {
     group_against_element_by_element<Tet10Group>(ElementShape::Tet10);

@@ -5,6 +5,9 @@
 #include <gmsh.h>
 #include <sys/wait.h>
 #include <unistd.h>
+#ifdef _OPENMP
+#include <omp.h>
+#endif
 
 #include <algorithm>
 #include <atomic>
@@ -351,3 +354,38 @@ TEST(ReadGmsh, AReadThatTakesTooLongIsAnInputError) {
     EXPECT_EQ(errno, ECHILD);
     set_gmsh_read_time_limit(30, 10);
 }
+
+#ifdef _OPENMP
+// Gmsh sets the calling thread's OpenMP thread count (omp_set_num_threads at initialize, on
+// General.NumThreads, in every mesh generation); a session gives the caller's back when it ends,
+// nested sessions included, so a program that meshes and then solves keeps its threads.
+TEST(GmshSession, LeavesTheCallersThreadCountAlone) {
+    const int saved = omp_get_max_threads();
+    omp_set_num_threads(3);  // not Gmsh's 1, and not the default of this machine's 2 cores
+    int inside = 0;
+    {
+        GmshSession outer;
+        {
+            GmshSession inner;  // as chicken_mesh inside a program's own session
+            make_box_model(2);
+            const Mesh m = mesh_from_gmsh_model("box");
+            EXPECT_GT(m.element_count(), 0);
+            inside = omp_get_max_threads();
+            gmsh::clear();
+        }
+        gmsh::model::add("again");
+        gmsh::model::occ::addBox(0, 0, 0, 1, 1, 1);
+        gmsh::model::occ::synchronize();
+        gmsh::model::mesh::generate(3);
+        gmsh::clear();
+    }
+    EXPECT_EQ(omp_get_max_threads(), 3);
+    // What the session guards against (recorded, not required: a later Gmsh may leave it alone).
+    RecordProperty("threads_inside_the_session", inside);
+    {
+        GmshSession alone;  // initialize and finalize only
+    }
+    EXPECT_EQ(omp_get_max_threads(), 3);
+    omp_set_num_threads(saved);
+}
+#endif
