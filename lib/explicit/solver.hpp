@@ -354,7 +354,7 @@ struct RunSummary {
     std::string controlling_rule;  // which rule gives its step (ElementGroup::time_step_rule)
     int controlling_block = -1, controlling_element = -1;
     double controlling_dt = 0;   // its critical step (before the 0.9 and the stability factor)
-    double stability_factor = 1; // measured 2/omega_max over the Table 2-1 step (<= 1; solid groups)
+    double stability_factor = 1; // measured 2/omega_max over the smallest solid Table 2-1 step (solid groups; may exceed 1 for tetrahedra)
     double mass = 0, added_mass = 0, added_mass_fraction = 0;
     EnergySummary energy;
     double wall_s = 0, element_cycles_per_s = 0;
