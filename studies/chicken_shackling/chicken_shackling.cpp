@@ -323,7 +323,7 @@ constexpr double kGraspBodySize = 20.0 * mm, kGraspLegSize = 5.0 * mm;
 constexpr double kGraspMassScalingDt = 2.5e-6;  // as Step 4 (selective; the added mass is in runs.json)
 constexpr double kFriction = 0.4;  // Table 5-6 0.4/0.3 with c_d = 0: mu = mu_s (THESIS_CH4_5.md Sec 10 item 1)
 
-/// Table 5-4: the drum speed [rad/s] of each case over 0-0.55, 0.55-0.85, 0.85-1.1 s.
+/// Table 5-4: the drum speed [rpm] of each case over 0-0.55, 0.55-0.85, 0.85-1.1 s.
 struct GraspCase {
     int number;
     std::array<double, 3> rpm;
