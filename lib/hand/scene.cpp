@@ -79,10 +79,12 @@ namespace {
 // nodes do not lie on one such plane (1e-9 of the object's size).
 double cut_plane_z(const MeshObject& o) {
     const auto& set = o.mesh.node_set(o.symmetry_set);
+    if (set.empty())
+        throw InputError(fmt::format("hand scene: the symmetry set '{}' of '{}' has no nodes", o.symmetry_set, o.part));
     double lo = std::numeric_limits<double>::infinity(), hi = -lo, size = 0.0;
     for (int n : set) lo = std::min(lo, o.mesh.nodes[n].z()), hi = std::max(hi, o.mesh.nodes[n].z());
     for (const Vec3& x : o.mesh.nodes) size = std::max(size, (x - o.mesh.nodes[set.front()]).norm());
-    if (set.empty() || hi - lo > 1e-9 * size)
+    if (hi - lo > 1e-9 * size)
         throw InputError(fmt::format("hand scene: the symmetry set '{}' of '{}' does not lie on a plane z = const (z from {} to {})",
                                      o.symmetry_set, o.part, lo, hi));
     return 0.5 * (lo + hi);
@@ -108,9 +110,21 @@ HandModel::HandModel(const Scene& scene) : scene_(scene) {
         if (!rigid.insert(p.part).second || material.count(p.part))
             throw InputError(fmt::format("hand scene: part name '{}' is used twice", p.part));
     }
+    // A deformable object's mesh into the model's mesh: its part name must be new, its node sets are
+    // renamed "<set>-<part>" (ellipsoid and mesh objects alike).
+    auto add_object = [&](Mesh m, const std::string& part, const ElasticMaterial& mat) {
+        std::map<std::string, std::vector<int>> sets;
+        for (auto& [name, set] : m.node_sets) sets[name + "-" + part] = set;
+        m.node_sets = std::move(sets);
+        mesh.append(m);
+        material[part] = mat;
+    };
+    auto check_new_part = [&](const std::string& part) {
+        if (material.count(part) || rigid.count(part))
+            throw InputError(fmt::format("hand scene: part name '{}' is used twice", part));
+    };
     for (auto& o : scene_.objects) {
-        if (material.count(o.part) || rigid.count(o.part))
-            throw InputError(fmt::format("hand scene: part name '{}' is used twice", o.part));
+        check_new_part(o.part);
         Mesh m = hex_ellipsoid(o.semi_axes, o.grid, o.half, o.part);
         m.translate(o.centre);
         if (o.mass > 0.0) {
@@ -118,17 +132,12 @@ HandModel::HandModel(const Scene& scene) : scene_(scene) {
             o.material = ElasticMaterial::make(o.material.name, o.material.youngs_modulus, o.material.poissons_ratio,
                                                o.mass / volume);
         }
-        std::map<std::string, std::vector<int>> sets;
-        for (auto& [name, set] : m.node_sets) sets[name + "-" + o.part] = set;
-        m.node_sets = std::move(sets);
-        mesh.append(m);
-        material[o.part] = o.material;
+        add_object(std::move(m), o.part, o.material);
     }
     std::set<std::string> tet_parts;
     for (const auto& o : scene_.meshes) {
-        if (material.count(o.part) || rigid.count(o.part))
-            throw InputError(fmt::format("hand scene: part name '{}' is used twice", o.part));
-        Mesh m = o.mesh;
+        check_new_part(o.part);
+        const Mesh& m = o.mesh;
         bool tets = false, hexes = false;
         for (const auto& b : m.blocks) {
             if (b.part != o.part)
@@ -142,11 +151,7 @@ HandModel::HandModel(const Scene& scene) : scene_(scene) {
         if (m.blocks.empty()) throw InputError(fmt::format("hand scene: mesh object '{}' has no elements", o.part));
         if (tets) tet_parts.insert(o.part);
         if (!o.symmetry_set.empty()) cut_plane_z(o);  // refuses a cut that is not a plane z = const
-        std::map<std::string, std::vector<int>> sets;
-        for (auto& [name, set] : m.node_sets) sets[name + "-" + o.part] = set;
-        m.node_sets = std::move(sets);
-        mesh.append(m);
-        material[o.part] = o.material;
+        add_object(m, o.part, o.material);
     }
     for (const auto& p : scene_.plates) mesh.append(parallelogram_quad4(p.centre, p.u, p.v, p.nu, p.nv, p.part));
     mesh.append(drum_mesh(scene_.hand.drum, scene_.drum_segments));

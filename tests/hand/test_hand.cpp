@@ -462,5 +462,9 @@ TEST(Hand, MeshObjectTiedToAPlateOnAPathLetsGoAtTheReleaseTime) {
     bad = scene();
     bad.meshes[0].symmetry_set = "x0";  // a face x = const, not z = const
     EXPECT_THROW(HandModel m(bad), InputError);
+    bad = scene();
+    bad.meshes[0].mesh.node_sets["none"] = {};
+    bad.meshes[0].symmetry_set = "none";  // an empty cut: named, not read past its end
+    EXPECT_NE(error_of(bad).find("symmetry set 'none' of 'block' has no nodes"), std::string::npos);
     EXPECT_THROW(seen_from(scene(), 0.001), InputError);  // not written for mesh objects
 }
