@@ -3,16 +3,13 @@
 #include <algorithm>
 #include <cmath>
 
-#if defined(__GNUC__) && defined(__x86_64__)
-#include <immintrin.h>
-#endif
-
 #include <fmt/format.h>
 
 #include "core/error.hpp"
 // The lane helpers and the material point shared with the tetrahedra; it also sets fp-contract=off
 // for this whole file (no FMA: every version of the kernel gives the same bits, hex8_explicit.hpp).
 #include "element/kernel_lanes.hpp"
+#include "element/lane_gather.hpp"
 
 namespace fem::hex8 {
 namespace {
@@ -296,74 +293,9 @@ void critical_time_step(const Lanes (&x)[3][8], const Lanes& trD, double c, cons
     dt = lanes::solid_time_step(length_of(x), trD, c, bulk);
 }
 
-#if defined(__GNUC__) && defined(__x86_64__)
-// GCC 12's AVX-512 intrinsics start from an undefined vector (self-initialised): a false -Wuninitialized.
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wuninitialized"
-#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
-namespace {
-// AVX-512 (with VL): per node of the element, the lanes' (x, y, z) triples are loaded as 256-bit
-// vectors (masked to three doubles: no read past a node array's end), lanes k and k + 4 in one
-// register, and transposed in registers into the three component vectors, which are stored whole.
-[[gnu::target("avx512f,avx512vl")]] inline void transpose_triples(const double* p, const std::size_t (&o)[kLanes][8],
-                                                                   int a, __m512d (&out)[3]) {
-    const __m512i lo = _mm512_setr_epi64(0, 1, 8, 9, 4, 5, 12, 13), hi = _mm512_setr_epi64(2, 3, 10, 11, 6, 7, 14, 15);
-    __m512d z[4];
-    for (int k = 0; k < 4; ++k)
-        z[k] = _mm512_insertf64x4(_mm512_castpd256_pd512(_mm256_maskz_loadu_pd(0x7, p + o[k][a])),
-                                  _mm256_maskz_loadu_pd(0x7, p + o[k + 4][a]), 1);
-    // [x0 x1 z0 z1 | x4 x5 z4 z5], [y0 y1 . . | y4 y5 . .] and the same for lanes 2, 3, 6, 7.
-    const __m512d xz01 = _mm512_unpacklo_pd(z[0], z[1]), yw01 = _mm512_unpackhi_pd(z[0], z[1]);
-    const __m512d xz23 = _mm512_unpacklo_pd(z[2], z[3]), yw23 = _mm512_unpackhi_pd(z[2], z[3]);
-    out[0] = _mm512_permutex2var_pd(xz01, lo, xz23);
-    out[1] = _mm512_permutex2var_pd(yw01, lo, yw23);
-    out[2] = _mm512_permutex2var_pd(xz01, hi, xz23);
-}
-
-[[gnu::target("avx512f,avx512vl")]] void gather_avx512(const double* xs, const double* Xs, const double* vs,
-                                                        const std::array<int, 8>* conn, int lanes, Lanes (&x)[3][8],
-                                                        Lanes (&u)[3][8], Lanes (&v)[3][8]) {
-    static_assert(kLanes == 8, "eight lanes per AVX-512 vector");
-    std::size_t o[kLanes][8];
-    for (int l = 0; l < kLanes; ++l) {
-        const auto& c = conn[std::min(l, lanes - 1)];
-        for (int a = 0; a < 8; ++a) o[l][a] = 3 * static_cast<std::size_t>(c[a]);
-    }
-    for (int a = 0; a < 8; ++a) {
-        __m512d xa[3], Xa[3], va[3];
-        transpose_triples(xs, o, a, xa);
-        transpose_triples(Xs, o, a, Xa);
-        transpose_triples(vs, o, a, va);
-        for (int i = 0; i < 3; ++i) {
-            _mm512_store_pd(reinterpret_cast<double*>(&x[i][a]), xa[i]);
-            _mm512_store_pd(reinterpret_cast<double*>(&u[i][a]), _mm512_sub_pd(xa[i], Xa[i]));
-            _mm512_store_pd(reinterpret_cast<double*>(&v[i][a]), va[i]);
-        }
-    }
-}
-}  // namespace
-#pragma GCC diagnostic pop
-#endif
-
 void gather(const double* xs, const double* Xs, const double* vs, const std::array<int, 8>* conn, int lanes,
             Lanes (&x)[3][8], Lanes (&u)[3][8], Lanes (&v)[3][8]) {
-#if defined(__GNUC__) && defined(__x86_64__)
-    static const bool avx512 = __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl");
-    if (avx512) return gather_avx512(xs, Xs, vs, conn, lanes, x, u, v);
-#endif
-    // Scalar stores into the lanes (on 100,000 elements this keeps more node loads in flight than
-    // assembling each vector in registers with generic code, which was 10 % slower there).
-    for (int l = 0; l < kLanes; ++l) {
-        const auto& cn = conn[std::min(l, lanes - 1)];
-        for (int a = 0; a < 8; ++a) {
-            const std::size_t o = 3 * static_cast<std::size_t>(cn[a]);
-            for (int i = 0; i < 3; ++i) {
-                x[i][a][l] = xs[o + i];
-                u[i][a][l] = xs[o + i] - Xs[o + i];
-                v[i][a][l] = vs[o + i];
-            }
-        }
-    }
+    gather_lanes<8, 8>(xs, Xs, vs, conn, lanes, x, u, v);  // element/lane_gather.hpp
 }
 
 namespace {

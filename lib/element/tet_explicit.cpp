@@ -4,10 +4,6 @@
 #include <cmath>
 #include <limits>
 
-#if defined(__GNUC__) && defined(__x86_64__)
-#include <immintrin.h>
-#endif
-
 #include <Eigen/Dense>
 #include <fmt/format.h>
 
@@ -16,6 +12,7 @@
 // The lane helpers and the material point shared with the hexahedron; it also sets fp-contract=off
 // for this whole file (no FMA: every version of the kernel gives the same bits).
 #include "element/kernel_lanes.hpp"
+#include "element/lane_gather.hpp"
 
 namespace fem::tet {
 
@@ -375,80 +372,10 @@ void critical_time_step(const hex8::Lanes (&x)[3][4], const hex8::Lanes& trD, do
 
 double characteristic_length(const double (&x)[3][4]) { return length_of(x); }
 
-namespace {
-template <int N>
-void gather_scalar(const double* xs, const double* Xs, const double* vs, const std::array<int, N>* conn, int lanes,
-                   hex8::Lanes (&x)[3][4], hex8::Lanes (&u)[3][N], hex8::Lanes (&v)[3][N]) {
-    for (int l = 0; l < hex8::kLanes; ++l) {
-        const auto& cn = conn[std::min(l, lanes - 1)];
-        for (int a = 0; a < N; ++a) {
-            const std::size_t o = 3 * static_cast<std::size_t>(cn[a]);
-            for (int i = 0; i < 3; ++i) {
-                u[i][a][l] = xs[o + i] - Xs[o + i];
-                v[i][a][l] = vs[o + i];
-            }
-            if (a < 4)
-                for (int i = 0; i < 3; ++i) x[i][a][l] = xs[o + i];
-        }
-    }
-}
-}  // namespace
-
-#if defined(__GNUC__) && defined(__x86_64__)
-// GCC 12's AVX-512 intrinsics start from an undefined vector (self-initialised): a false -Wuninitialized.
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wuninitialized"
-#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
-namespace {
-// Node a's (x, y, z) of the eight lanes (offsets o[l] into p), loaded as 256-bit vectors masked to
-// three doubles (no read past an array's end), lanes k and k + 4 in one register, transposed into the
-// three component vectors. (hex8_explicit.cpp has the same transposition for its 8-node offsets.)
-[[gnu::target("avx512f,avx512vl")]] inline void transpose_triples(const double* p, const std::size_t (&o)[hex8::kLanes],
-                                                                   __m512d (&out)[3]) {
-    const __m512i lo = _mm512_setr_epi64(0, 1, 8, 9, 4, 5, 12, 13), hi = _mm512_setr_epi64(2, 3, 10, 11, 6, 7, 14, 15);
-    __m512d z[4];
-    for (int k = 0; k < 4; ++k)
-        z[k] = _mm512_insertf64x4(_mm512_castpd256_pd512(_mm256_maskz_loadu_pd(0x7, p + o[k])),
-                                  _mm256_maskz_loadu_pd(0x7, p + o[k + 4]), 1);
-    // [x0 x1 z0 z1 | x4 x5 z4 z5], [y0 y1 . . | y4 y5 . .] and the same for lanes 2, 3, 6, 7.
-    const __m512d xz01 = _mm512_unpacklo_pd(z[0], z[1]), yw01 = _mm512_unpackhi_pd(z[0], z[1]);
-    const __m512d xz23 = _mm512_unpacklo_pd(z[2], z[3]), yw23 = _mm512_unpackhi_pd(z[2], z[3]);
-    out[0] = _mm512_permutex2var_pd(xz01, lo, xz23);
-    out[1] = _mm512_permutex2var_pd(yw01, lo, yw23);
-    out[2] = _mm512_permutex2var_pd(xz01, hi, xz23);
-}
-
-template <int N>
-[[gnu::target("avx512f,avx512vl")]] void gather_avx512(const double* xs, const double* Xs, const double* vs,
-                                                        const std::array<int, N>* conn, int lanes, hex8::Lanes (&x)[3][4],
-                                                        hex8::Lanes (&u)[3][N], hex8::Lanes (&v)[3][N]) {
-    static_assert(hex8::kLanes == 8, "eight lanes per AVX-512 vector");
-    for (int a = 0; a < N; ++a) {
-        std::size_t o[hex8::kLanes];
-        for (int l = 0; l < hex8::kLanes; ++l) o[l] = 3 * static_cast<std::size_t>(conn[std::min(l, lanes - 1)][a]);
-        __m512d xa[3], Xa[3], va[3];
-        transpose_triples(xs, o, xa);
-        transpose_triples(Xs, o, Xa);
-        transpose_triples(vs, o, va);
-        for (int i = 0; i < 3; ++i) {
-            if (a < 4) _mm512_store_pd(reinterpret_cast<double*>(&x[i][a]), xa[i]);
-            _mm512_store_pd(reinterpret_cast<double*>(&u[i][a]), _mm512_sub_pd(xa[i], Xa[i]));
-            _mm512_store_pd(reinterpret_cast<double*>(&v[i][a]), va[i]);
-        }
-    }
-}
-}  // namespace
-#pragma GCC diagnostic pop
-#endif
-
 template <int N>
 void gather(const double* xs, const double* Xs, const double* vs, const std::array<int, N>* conn, int lanes,
             hex8::Lanes (&x)[3][4], hex8::Lanes (&u)[3][N], hex8::Lanes (&v)[3][N]) {
-#if defined(__GNUC__) && defined(__x86_64__)
-    static const bool avx512 = __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl");
-    if (avx512) return gather_avx512<N>(xs, Xs, vs, conn, lanes, x, u, v);
-#endif
-    gather_scalar<N>(xs, Xs, vs, conn, lanes, x, u, v);
+    hex8::gather_lanes<N, 4>(xs, Xs, vs, conn, lanes, x, u, v);  // element/lane_gather.hpp: the corners' x only
 }
 template void gather<4>(const double*, const double*, const double*, const std::array<int, 4>*, int, hex8::Lanes (&)[3][4],
                         hex8::Lanes (&)[3][4], hex8::Lanes (&)[3][4]);
