@@ -27,7 +27,7 @@ DEB_PACKAGES := cmake make g++ pkg-config \
   gnuplot-nox gmsh libgmsh-dev calculix-ccx \
   libsuitesparse-dev libopenblas0-serial \
   libopenmpi-dev openmpi-bin \
-  clang libclang-rt-14-dev chromium ccache \
+  clang libclang-rt-14-dev lld chromium ccache \
   python3-meshio python3-h5py
 
 empty :=
