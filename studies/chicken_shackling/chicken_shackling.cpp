@@ -242,13 +242,19 @@ std::pair<double, AssembledSystem> linear_limb(const Mesh& m, const ElasticMater
     return {c, std::move(sys)};
 }
 
-/// Step 2 for one limb: the model of Fig 5-3 as we read it (chicken::limb_mesh: fixed at the joint
-/// toward the hip, the dead load along -y at the other), its linear compliance and first mode.
-/// `reversed`: the other way round (fixed at the joint toward the paw, loaded at the one toward the
-/// hip), the alternative reading of Fig 5-3 the limb-3 known miss is tested with.
-LimbRun prepare_limb(const chicken::Chicken& c, int limb, double size, const ElasticMaterial& mat, bool reversed = false) {
+/// The mesh of one limb's model of Fig 5-3 as we read it (chicken::limb_mesh: node set "fixed" at the
+/// joint toward the hip, "loaded" at the other; Gmsh: call on one thread).
+Mesh limb_model_mesh(const chicken::Chicken& c, int limb, double size) {
+    return chicken::limb_mesh(c, limb, {.size = size, .order = 2, .part = "limb"});
+}
+
+/// Step 2 for one limb mesh (limb_model_mesh): fixed at "fixed", the dead load along -y at
+/// "loaded"; its linear compliance and first mode. `reversed`: the other way round (fixed at the
+/// joint toward the paw, loaded at the one toward the hip), the alternative reading of Fig 5-3 the
+/// limb-3 known miss is tested with.
+LimbRun prepare_limb(Mesh mesh, const ElasticMaterial& mat, bool reversed = false) {
     LimbRun r;
-    r.mesh = chicken::limb_mesh(c, limb, {.size = size, .order = 2, .part = "limb"});
+    r.mesh = std::move(mesh);
     if (reversed) std::swap(r.mesh.node_sets.at("fixed"), r.mesh.node_sets.at("loaded"));
     auto [compliance, sys] = linear_limb(r.mesh, mat);
     r.linear_compliance = compliance;
@@ -682,8 +688,9 @@ struct LagrangeBody {
     chicken::Chicken bird;
     chicken::MassProperties whole, shank;  // the full bird; limb 1 of one leg
 };
-LagrangeBody lagrange_body(const chicken::Chicken& c) {
-    return {c, chicken::mass_properties(c, false), chicken::limb_mass_properties(c, 1)};
+/// `whole`: chicken::mass_properties(c, false), which Step 1 has computed already.
+LagrangeBody lagrange_body(const chicken::Chicken& c, const chicken::MassProperties& whole) {
+    return {c, whole, chicken::limb_mass_properties(c, 1)};
 }
 
 /// The two-link chain of lib/multibody/lumped_bird.hpp from a bird geometry (the Table 5-3 bird): link
@@ -791,7 +798,7 @@ int calibrate(const std::vector<int>& limbs) {
                 const auto [wb, kb] = tried.back();
                 w = wb * std::exp(std::log(target / kb) * std::log(wb / wa) / std::log(kb / ka));
             }
-            LimbRun r = prepare_limb(c, limb, kLimbMeshSize, mat);
+            LimbRun r = prepare_limb(limb_model_mesh(c, limb, kLimbMeshSize), mat);
             relax_table_loads(r, mat, t.force, fmt::format("calibrate L{}", limb));
             const double k_ls = least_squares_stiffness(r.force, r.displacement);
             ratio = k_ls * r.linear_compliance;
@@ -887,7 +894,9 @@ void run(check::Study& study) {
     // ---- Step 4, set-up: the shackle model's mesh (Gmsh, on this thread); its two runs go first on
     // Step 2's workers (below), the rotating one being the longest job of the study. ------------------
     const ShackleInput shackle_input(birdB);
-    const double shackle_density = chicken::density_for_mass(birdB);
+    // chicken::density_for_mass(birdB), which is birdB.mass / (Step 1's propsB).volume: the same
+    // OpenCASCADE computation, not repeated.
+    const double shackle_density = birdB.mass / propsB.volume;
     ShackleRun shackle_runs[2];  // rotating, inverting
     std::vector<std::function<void()>> shackle_jobs;
     for (const bool rotating : {true, false})
@@ -914,13 +923,14 @@ void run(check::Study& study) {
         const ElasticMaterial mat = chicken::material(rhoA);
         const auto t0 = std::chrono::steady_clock::now();
         std::array<LimbRun, 3> runs;
-        for (int limb = 1; limb <= 3; ++limb) runs[limb - 1] = prepare_limb(birdA, limb, kLimbMeshSize, mat);
+        for (int limb = 1; limb <= 3; ++limb) runs[limb - 1] = prepare_limb(limb_model_mesh(birdA, limb, kLimbMeshSize), mat);
         // The relaxation verified: limb 3 at 1 % of its first load, relaxed to 1e-8 of the stage's
         // peak kinetic energy, against the linear static solution of the same mesh.
         LimbRun small = runs[2];
         double small_ratio = 0.0;
-        // The limb-3 known miss (it stiffens, the thesis's softens): the same limb the other way round.
-        LimbRun reversed = prepare_limb(birdA, 3, kLimbMeshSize, mat, true);
+        // The limb-3 known miss (it stiffens, the thesis's softens): the same limb (the same mesh) the
+        // other way round.
+        LimbRun reversed = prepare_limb(runs[2].mesh, mat, true);
         std::vector<std::function<void()>> jobs = std::move(shackle_jobs);  // Step 4's runs first
         for (int limb = 1; limb <= 3; ++limb)
             jobs.push_back([&, limb] { relax_table_loads(runs[limb - 1], mat, kTable52[limb - 1].force, fmt::format("limb {}", limb)); });
@@ -1021,7 +1031,7 @@ void run(check::Study& study) {
     {
         // 5a. Verification on the study's bird: a free swing on a fixed shackle conserves T + V; a
         // small one has the linearised period.
-        const LagrangeBody body = lagrange_body(birdB);
+        const LagrangeBody body = lagrange_body(birdB, propsB);
         const LagrangeSetup setup = lagrange_setup(body, 1.0, 1.0, 0.0);
         const multibody::LumpedBirdModel still(setup.bird, multibody::ShackleMotion::fixed(setup.paw));
         const multibody::LumpedBirdState eq = still.equilibrium(0.0, setup.built);
