@@ -28,9 +28,12 @@
 // Run:  make chicken_shackling   (or build/bin/chicken_shackling --figures figures)
 //       build/bin/chicken_shackling --calibrate   re-derives the limb widths of Step 2 (minutes)
 //       build/bin/chicken_shackling --shackle rotating|inverting [end time [mass scaling step [drive ramp]]]
-//                                                  one Step 4 run; writes shackle-<case>.dat here
+//                                                  one Step 4 run; writes shackle-<case>.{dat,pvd} into
+//                                                  build/results/chicken_shackling/shackle-<case>/
 //       build/bin/chicken_shackling --grasp <case 1..5> [end time]
-//                                                  one Step 3 case of Table 5-4; writes grasp-case-<n>.dat here
+//                                                  one Step 3 case of Table 5-4; writes grasp-case-<n>.{dat,pvd}
+//                                                  and its surfaces into build/results/chicken_shackling/grasp-case-<n>/
+//       (--shackle and --grasp take --results DIR for another folder; check/side_run.hpp)
 // Out:  build/results/chicken_shackling/{checks.json, runs.json, table-5-2.md, *.dat, *.vtu,
 //       shackle-{rotating,inverting}.{dat,pvd} with their VTU},
 //       figures/{fig-5-1-bird, fig-5-2-skeleton, fig-5-3-limbs, fig-5-19-bird, fig-5-20-fe-rotating-ramp,
@@ -45,17 +48,20 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <filesystem>
 #include <fmt/format.h>
 #include <iostream>
 #include <limits>
 #include <memory>
 #include <numbers>
+#include <span>
 #include <string>
 #include <thread>
 #include <vector>
 
 #include "assembly/model.hpp"
 #include "assembly/static_solve.hpp"
+#include "check/side_run.hpp"
 #include "check/study.hpp"
 #include "contact/surface.hpp"
 #include "core/error.hpp"
@@ -68,6 +74,7 @@
 #include "explicit/tet_groups.hpp"
 #include "hand/scene.hpp"
 #include "io/atomic_file.hpp"
+#include "io/run_folder.hpp"
 #include "io/surface_plot.hpp"
 #include "io/table.hpp"
 #include "io/vtu.hpp"
@@ -235,13 +242,19 @@ std::pair<double, AssembledSystem> linear_limb(const Mesh& m, const ElasticMater
     return {c, std::move(sys)};
 }
 
-/// Step 2 for one limb: the model of Fig 5-3 as we read it (chicken::limb_mesh: fixed at the joint
-/// toward the hip, the dead load along -y at the other), its linear compliance and first mode.
-/// `reversed`: the other way round (fixed at the joint toward the paw, loaded at the one toward the
-/// hip), the alternative reading of Fig 5-3 the limb-3 known miss is tested with.
-LimbRun prepare_limb(const chicken::Chicken& c, int limb, double size, const ElasticMaterial& mat, bool reversed = false) {
+/// The mesh of one limb's model of Fig 5-3 as we read it (chicken::limb_mesh: node set "fixed" at the
+/// joint toward the hip, "loaded" at the other; Gmsh: call on one thread).
+Mesh limb_model_mesh(const chicken::Chicken& c, int limb, double size) {
+    return chicken::limb_mesh(c, limb, {.size = size, .order = 2, .part = "limb"});
+}
+
+/// Step 2 for one limb mesh (limb_model_mesh): fixed at "fixed", the dead load along -y at
+/// "loaded"; its linear compliance and first mode. `reversed`: the other way round (fixed at the
+/// joint toward the paw, loaded at the one toward the hip), the alternative reading of Fig 5-3 the
+/// limb-3 known miss is tested with.
+LimbRun prepare_limb(Mesh mesh, const ElasticMaterial& mat, bool reversed = false) {
     LimbRun r;
-    r.mesh = chicken::limb_mesh(c, limb, {.size = size, .order = 2, .part = "limb"});
+    r.mesh = std::move(mesh);
     if (reversed) std::swap(r.mesh.node_sets.at("fixed"), r.mesh.node_sets.at("loaded"));
     auto [compliance, sys] = linear_limb(r.mesh, mat);
     r.linear_compliance = compliance;
@@ -397,7 +410,7 @@ struct GraspRun {
 
 /// A 3D picture's data (io/surface_plot.hpp): the outer faces of the bird (<prefix>-bird.dat) and of
 /// the fingers, drum, perch and shackle (<prefix>-hand.dat) at positions x [mm] (grasp.gp draws them).
-void write_grasp_surfaces(const std::string& prefix, const hand::HandModel& hm, std::span<const Vec3> x) {
+void write_grasp_surfaces(const std::filesystem::path& prefix, const hand::HandModel& hm, std::span<const Vec3> x) {
     const Vec3 light(0.3, 0.8, 1.0);
     std::vector<std::array<Vec3, 3>> bird, hand;
     auto add = [&](const contact::ContactSurface& surface, std::vector<std::array<Vec3, 3>>& to) {
@@ -410,12 +423,14 @@ void write_grasp_surfaces(const std::string& prefix, const hand::HandModel& hm, 
     for (const auto& f : hm.scene().hand.fingers)
         add(contact::ContactSurface::from_part(hm.mesh(), "finger-" + f.name, hm.scene().hand.rubber), hand);
     for (const char* part : {"drum", "perch", "shackle"}) add(contact::ContactSurface::rigid_part(hm.mesh(), part, 1e-3), hand);
-    io::write_shaded_triangles(prefix + "-bird.dat", bird, light, 1000.0);
-    io::write_shaded_triangles(prefix + "-hand.dat", hand, light, 1000.0);
+    io::write_shaded_triangles(prefix.string() + "-bird.dat", bird, light, 1000.0);
+    io::write_shaded_triangles(prefix.string() + "-hand.dat", hand, light, 1000.0);
 }
 
-/// One case of Table 5-4 from 0 to end_time (Gmsh-free: the bird mesh is given).
-GraspRun run_grasp(const GraspCase& c, const Mesh& bird, double density, double end_time, const std::filesystem::path& pvd) {
+/// One case of Table 5-4 from 0 to end_time (Gmsh-free: the bird mesh is given). Writes into folder
+/// `out`: grasp-case-<n>.pvd with its VTU every 50 ms, and the start and end surfaces
+/// grasp-case-<n>-{start,end}-{bird,hand}.dat (write_grasp_surfaces).
+GraspRun run_grasp(const GraspCase& c, const Mesh& bird, double density, double end_time, const std::filesystem::path& out) {
     hand::HandModel hm(grasp_scene(c, bird, density));
     const Mesh& mesh = hm.mesh();
     const int centre = mesh.node_set("body_center-chicken")[0], head = mesh.node_set("head-chicken")[0];
@@ -429,12 +444,12 @@ GraspRun run_grasp(const GraspCase& c, const Mesh& bird, double density, double 
     o.name = fmt::format("grasp case {} to {:.3f} s", c.number, end_time);
     o.print_summary = false;
     o.progress = false;
-    if (!pvd.empty()) o.pvd_path = pvd, o.vtu_interval = 0.05;
+    o.pvd_path = out / fmt::format("grasp-case-{}.pvd", c.number), o.vtu_interval = 0.05;
     ExplicitSolver solver(hm.model(), o);
     GraspRun r;
     r.case_number = c.number;
     const auto& fingers_on_bird = hm.contact("fingers on chicken");
-    write_grasp_surfaces(fmt::format("grasp-case-{}-start", c.number), hm, mesh.nodes);
+    write_grasp_surfaces(out / fmt::format("grasp-case-{}-start", c.number), hm, mesh.nodes);
     solver.observer = [&](const ExplicitSolver& sv) {
         const NodalState& s = sv.state();
         r.time.push_back(sv.time());
@@ -453,7 +468,7 @@ GraspRun run_grasp(const GraspCase& c, const Mesh& bird, double density, double 
     const auto t0 = std::chrono::steady_clock::now();
     r.summary = solver.run();
     r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    write_grasp_surfaces(fmt::format("grasp-case-{}-end", c.number), hm, solver.state().x);
+    write_grasp_surfaces(out / fmt::format("grasp-case-{}-end", c.number), hm, solver.state().x);
     return r;
 }
 
@@ -673,8 +688,9 @@ struct LagrangeBody {
     chicken::Chicken bird;
     chicken::MassProperties whole, shank;  // the full bird; limb 1 of one leg
 };
-LagrangeBody lagrange_body(const chicken::Chicken& c) {
-    return {c, chicken::mass_properties(c, false), chicken::limb_mass_properties(c, 1)};
+/// `whole`: chicken::mass_properties(c, false), which Step 1 has computed already.
+LagrangeBody lagrange_body(const chicken::Chicken& c, const chicken::MassProperties& whole) {
+    return {c, whole, chicken::limb_mass_properties(c, 1)};
 }
 
 /// The two-link chain of lib/multibody/lumped_bird.hpp from a bird geometry (the Table 5-3 bird): link
@@ -782,7 +798,7 @@ int calibrate(const std::vector<int>& limbs) {
                 const auto [wb, kb] = tried.back();
                 w = wb * std::exp(std::log(target / kb) * std::log(wb / wa) / std::log(kb / ka));
             }
-            LimbRun r = prepare_limb(c, limb, kLimbMeshSize, mat);
+            LimbRun r = prepare_limb(limb_model_mesh(c, limb, kLimbMeshSize), mat);
             relax_table_loads(r, mat, t.force, fmt::format("calibrate L{}", limb));
             const double k_ls = least_squares_stiffness(r.force, r.displacement);
             ratio = k_ls * r.linear_compliance;
@@ -878,7 +894,9 @@ void run(check::Study& study) {
     // ---- Step 4, set-up: the shackle model's mesh (Gmsh, on this thread); its two runs go first on
     // Step 2's workers (below), the rotating one being the longest job of the study. ------------------
     const ShackleInput shackle_input(birdB);
-    const double shackle_density = chicken::density_for_mass(birdB);
+    // chicken::density_for_mass(birdB), which is birdB.mass / (Step 1's propsB).volume: the same
+    // OpenCASCADE computation, not repeated.
+    const double shackle_density = birdB.mass / propsB.volume;
     ShackleRun shackle_runs[2];  // rotating, inverting
     std::vector<std::function<void()>> shackle_jobs;
     for (const bool rotating : {true, false})
@@ -905,13 +923,14 @@ void run(check::Study& study) {
         const ElasticMaterial mat = chicken::material(rhoA);
         const auto t0 = std::chrono::steady_clock::now();
         std::array<LimbRun, 3> runs;
-        for (int limb = 1; limb <= 3; ++limb) runs[limb - 1] = prepare_limb(birdA, limb, kLimbMeshSize, mat);
+        for (int limb = 1; limb <= 3; ++limb) runs[limb - 1] = prepare_limb(limb_model_mesh(birdA, limb, kLimbMeshSize), mat);
         // The relaxation verified: limb 3 at 1 % of its first load, relaxed to 1e-8 of the stage's
         // peak kinetic energy, against the linear static solution of the same mesh.
         LimbRun small = runs[2];
         double small_ratio = 0.0;
-        // The limb-3 known miss (it stiffens, the thesis's softens): the same limb the other way round.
-        LimbRun reversed = prepare_limb(birdA, 3, kLimbMeshSize, mat, true);
+        // The limb-3 known miss (it stiffens, the thesis's softens): the same limb (the same mesh) the
+        // other way round.
+        LimbRun reversed = prepare_limb(runs[2].mesh, mat, true);
         std::vector<std::function<void()>> jobs = std::move(shackle_jobs);  // Step 4's runs first
         for (int limb = 1; limb <= 3; ++limb)
             jobs.push_back([&, limb] { relax_table_loads(runs[limb - 1], mat, kTable52[limb - 1].force, fmt::format("limb {}", limb)); });
@@ -1012,7 +1031,7 @@ void run(check::Study& study) {
     {
         // 5a. Verification on the study's bird: a free swing on a fixed shackle conserves T + V; a
         // small one has the linearised period.
-        const LagrangeBody body = lagrange_body(birdB);
+        const LagrangeBody body = lagrange_body(birdB, propsB);
         const LagrangeSetup setup = lagrange_setup(body, 1.0, 1.0, 0.0);
         const multibody::LumpedBirdModel still(setup.bird, multibody::ShackleMotion::fixed(setup.paw));
         const multibody::LumpedBirdState eq = still.equilibrium(0.0, setup.built);
@@ -1128,52 +1147,70 @@ int main(int argc, char** argv) {
                 }
             return run_program("chicken_shackling --calibrate", [&] { return calibrate(limbs); });
         }
+    // The side runs below write into a folder of their own under the study's results folder (never
+    // the current directory; check/side_run.hpp), as one run's set (io::RunFolder). Their operands are
+    // the arguments after the option up to the next option (--results DIR may follow).
+    const std::span<char* const> args(argv, static_cast<std::size_t>(argc));
+    auto operands = [&](int i) {
+        std::vector<std::string> v;
+        for (int k = i + 1; k < argc && std::strncmp(argv[k], "--", 2) != 0; ++k) v.push_back(argv[k]);
+        return v;
+    };
     // --shackle rotating|inverting [end time [mass scaling step [drive ramp]]]: one Step 4 run alone.
     for (int i = 1; i < argc; ++i)
         if (std::strcmp(argv[i], "--shackle") == 0) {
-            const bool rotating = i + 1 >= argc || std::strcmp(argv[i + 1], "inverting") != 0;
-            const double end = i + 2 < argc ? std::atof(argv[i + 2]) : kShackleWindow;
-            const double scaling = i + 3 < argc ? std::atof(argv[i + 3]) : kShackleMassScalingDt;
-            const double ramp = i + 4 < argc ? std::atof(argv[i + 4]) : 0.0;
+            const std::vector<std::string> op = operands(i);
+            const bool rotating = op.empty() || op[0] != "inverting";
+            const double end = op.size() > 1 ? std::atof(op[1].c_str()) : kShackleWindow;
+            const double scaling = op.size() > 2 ? std::atof(op[2].c_str()) : kShackleMassScalingDt;
+            const double ramp = op.size() > 3 ? std::atof(op[3].c_str()) : 0.0;
             return run_program("chicken_shackling --shackle", [&] {
+                const std::string name = fmt::format("shackle-{}", rotating ? "rotating" : "inverting");
+                io::RunFolder out(check::side_run_folder("chicken_shackling", name, args), "chicken_shackling --shackle");
                 const chicken::Chicken bird = chicken::table_5_3_chicken();
                 const double density = chicken::density_for_mass(bird);
                 const ShackleInput input(bird);
-                const ShackleRun r = run_shackle(input, density, rotating, end,
-                                                  fmt::format("shackle-{}.pvd", rotating ? "rotating" : "inverting"), scaling, ramp, end);
+                const ShackleRun r = run_shackle(input, density, rotating, end, out.staging() / (name + ".pvd"), scaling, ramp, end);
                 fmt::print("{}\n", r.summary.text());
-                write_shackle_dat(fmt::format("shackle-{}.dat", rotating ? "rotating" : "inverting"), r);
+                write_shackle_dat(out.staging() / (name + ".dat"), r);
                 for (std::size_t k = 0; k < r.time.size(); ++k)
                     fmt::print("t {:.3f}  chicken {:.2f}  shackle {:.2f}  paw {:.2f}  rel {:.2f}  rel_paw {:.2f} mm  vm {:.2f} MPa\n", r.time[k],
                                r.chicken[k] / mm, r.shackle[k] / mm, r.paw[k] / mm, r.relative[k] / mm, r.relative_paw[k] / mm, r.stress[k] / 1e6);
                 fmt::print("{}\n", shackle_peaks_text(r));
+                out.commit();
+                fmt::print("results: {}\n", out.path().string());
                 return 0;
             });
         }
     // --grasp <case 1..5> [end time]: one Step 3 case of Table 5-4 alone (not in the study run yet:
-    // README, Step 3); writes grasp-case-<n>.dat and grasp-case-<n>.pvd here.
+    // README, Step 3).
     for (int i = 1; i < argc; ++i)
         if (std::strcmp(argv[i], "--grasp") == 0) {
-            const int number = i + 1 < argc ? std::atoi(argv[i + 1]) : 4;
-            const double end = i + 2 < argc ? std::atof(argv[i + 2]) : kGraspEnd;
+            const std::vector<std::string> op = operands(i);
+            const int number = !op.empty() ? std::atoi(op[0].c_str()) : 4;
+            const double end = op.size() > 1 ? std::atof(op[1].c_str()) : kGraspEnd;
             if (number < 1 || number > 5 || !(end > 0.0)) {
                 std::cerr << "chicken_shackling --grasp: the case is 1..5 (Table 5-4) and the end time positive\n";
                 return 2;
             }
             return run_program("chicken_shackling --grasp", [&] {
+                const std::string name = fmt::format("grasp-case-{}", number);
+                io::RunFolder out(check::side_run_folder("chicken_shackling", name, args), "chicken_shackling --grasp");
                 const chicken::Chicken bird = chicken::table_5_1_chicken();
                 const double density = chicken::density_for_mass(bird);
                 const Mesh mesh = grasp_bird_mesh(bird);  // a GmshSession gives the caller's threads back
                 fmt::print("grasp bird: {} nodes, {} tet10, density {:.1f} kg/m3\n", mesh.node_count(), mesh.element_count(), density);
-                const GraspRun r = run_grasp(kTable54[number - 1], mesh, density, end, fmt::format("grasp-case-{}.pvd", number));
+                const GraspRun r = run_grasp(kTable54[number - 1], mesh, density, end, out.staging());
                 fmt::print("{}\n", r.summary.text());
-                write_grasp_dat(fmt::format("grasp-case-{}.dat", number), r);
+                write_grasp_dat(out.staging() / (name + ".dat"), r);
                 for (std::size_t k = 0; k < r.time.size(); k += 10)
                     fmt::print("t {:.3f}  body ({:.1f}, {:.1f}) mm  perch ({:.1f}, {:.1f}) mm  theta_b {:.2f} deg  E tip dy {:.2f} mm  "
                                "vm {:.3f} MPa  F {:.3g} N\n",
                                r.time[k], r.body[k].x() / mm, r.body[k].y() / mm, r.perch[k].x() / mm, r.perch[k].y() / mm,
                                r.theta_b[k] / deg, r.tip_e_y[k] / mm, r.finger_stress[k] / 1e6, r.finger_force[k]);
                 fmt::print("wall {:.1f} s\n", r.seconds);
+                out.commit();
+                fmt::print("results: {}\n", out.path().string());
                 return 0;
             });
         }

@@ -1,6 +1,8 @@
 # Step 3 picture: the half bird on its perch in the hand (Table 5-6 global frame, mm), drawn from the
-# surfaces `chicken_shackling --grasp <case> <end>` writes (grasp-case-<n>-{start,end}-{bird,hand}.dat).
-# Run: gnuplot -e "data='grasp-case-4-start'; out='grasp.png'; label='...'" grasp.gp
+# surfaces `chicken_shackling --grasp <case> <end>` writes (grasp-case-<n>-{start,end}-{bird,hand}.dat, in
+# build/results/chicken_shackling/grasp-case-<n>/). Run from the project root:
+#   gnuplot -e "data='build/results/chicken_shackling/grasp-case-4/grasp-case-4-start'; out='grasp.png'; label='...'" \
+#     studies/chicken_shackling/grasp.gp
 # The bird's shades (0.25..1) use the palette's skin half; the hand, drum, perch and shackle's
 # shades are moved up by 1 into its blue-grey half. y (up) is drawn as gnuplot's z.
 set palette defined (0 '#3b2a1c', 0.5 '#a8805a', 1 '#f3dcb4', 1.0001 '#1c2a3b', 1.5 '#5a7aa8', 2 '#c8d8f0')

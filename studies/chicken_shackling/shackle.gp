@@ -1,8 +1,9 @@
 # Step 4: one shackle run's histories (shackle-<case>.dat: displacements, the shackle's stress) as
 # Fig 5-20 (rotating) or Fig 5-22 (inverting) of our FE model. Drawn by chicken_shackling.gp from the
 # study's run (figures fig-5-20-fe-rotating-ramp, fig-5-22-fe-inverting-ramp), or by hand for a run
-# of build/bin/chicken_shackling --shackle <case> ...:
-#   gnuplot -e "dat='shackle-rotating.dat'; out='figures/fig-5-20-fe'" studies/chicken_shackling/shackle.gp
+# of build/bin/chicken_shackling --shackle <case> ... (its files in build/results/chicken_shackling/shackle-<case>/):
+#   gnuplot -e "dat='build/results/chicken_shackling/shackle-rotating/shackle-rotating.dat'; out='figures/fig-5-20-fe'" \
+#     studies/chicken_shackling/shackle.gp
 # Variables: dat, out (without extension), case ('rotating' default, or 'inverting'); term and ext
 # (default pngcairo, png).
 if (!exists("case")) case = 'rotating'

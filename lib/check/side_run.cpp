@@ -1,0 +1,19 @@
+#include "check/side_run.hpp"
+
+#include <string>
+
+#include "core/error.hpp"
+
+namespace fem::check {
+
+std::filesystem::path side_run_folder(std::string_view study, std::string_view run, std::span<char* const> args) {
+    for (std::size_t i = 1; i < args.size(); ++i)
+        if (std::string_view(args[i]) == "--results") {
+            if (i + 1 >= args.size()) throw InputError("option --results needs a value");
+            return std::filesystem::absolute(args[i + 1]);
+        }
+    // FEM_RESULTS_DIR: build/results of this build tree, an absolute path (CMakeLists.txt).
+    return std::filesystem::absolute(std::filesystem::path(FEM_RESULTS_DIR) / study / run);
+}
+
+}  // namespace fem::check
