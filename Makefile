@@ -27,7 +27,7 @@ DEB_PACKAGES := cmake make g++ pkg-config \
   gnuplot-nox gmsh libgmsh-dev calculix-ccx \
   libsuitesparse-dev libopenblas0-serial \
   libopenmpi-dev openmpi-bin \
-  clang libclang-rt-14-dev lld chromium ccache \
+  clang libclang-rt-14-dev lld ninja-build chromium ccache \
   python3-meshio python3-h5py
 
 empty :=
@@ -74,8 +74,12 @@ CCACHE_LAUNCHER := $(if $(shell command -v ccache 2>/dev/null),-DCMAKE_CXX_COMPI
 # `make <study>` before the packages were installed) is simply run again by the next make instead of
 # leaving a half-made build folder that every later make trips over. CMake retries whatever it did
 # not find. tests/makefile/configure_recovers.sh checks this in a scratch copy.
+# A new build folder is generated for Ninja (Debian ninja-build, make deps), which compiles a target's
+# sources while the libraries it links are still being built (CMake's Makefiles wait for them); a folder
+# that already exists keeps the generator it was made with (CMake refuses to switch).
+GENERATOR := $(if $(wildcard $(BUILD)/CMakeCache.txt),,$(if $(shell command -v ninja 2>/dev/null),-G Ninja))
 $(BUILD)/.configured:
-	cmake -S . -B $(BUILD) $(CMAKE_FLAGS) $(CCACHE_LAUNCHER)
+	cmake -S . -B $(BUILD) $(GENERATOR) $(CMAKE_FLAGS) $(CCACHE_LAUNCHER)
 	@touch $@
 
 configure: $(BUILD)/.configured
