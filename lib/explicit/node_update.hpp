@@ -39,7 +39,12 @@ struct NodeUpdateData {
     double dtavg = 0, dt_half = 0;             // (dt(n-1/2) + dt(n+1/2))/2, dt(n+1/2)
 };
 
-/// Updates nodes [i0, i1) and returns their energy sums (in node order).
+/// Updates nodes [i0, i1) and returns their energy sums (in node order). Vectorized over the free
+/// nodes; the same bits as update_node on each node in order (test ExplicitNodeUpdate.*).
 NodeSums update_nodes(const NodeUpdateData& d, int i0, int i1);
+
+/// The scalar update of node i (any node: free, massless, fixed or prescribed), its terms added to
+/// p in the order update_nodes adds them: the reference of the vectorized update.
+void update_node(const NodeUpdateData& d, int i, NodeSums& p);
 
 }  // namespace fem::explicit_detail
