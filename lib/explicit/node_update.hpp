@@ -2,12 +2,12 @@
 // The central-difference node update of ExplicitSolver::run() (thesis Eq 2-5 with the lumped mass,
 // mass-proportional damping of Eq 2-39 at the mid-point, constraints) and its energy sums, over one
 // chunk of nodes. Its own file so that it can be compiled for AVX-512, AVX2 and baseline x86-64 and
-// chosen at load time (GCC function multi-versioning, as the element kernels): the update is scalar
-// code whose eleven running sums, the node's vectors and the constants do not fit in the sixteen
-// registers of SSE2/AVX2, and the spilled sums turned every node's additions into a store-load chain
-// through the stack (football Case 4: 14 % of the samples in the update, the top ones on the spills).
-// AVX-512 has 32 registers. Every version does the same IEEE operations in the same order (no FMA:
-// the .cpp sets fp-contract=off; plain arrays, no Eigen): the same bits on every processor.
+// chosen at load time (GCC function multi-versioning, as the element kernels). The free nodes are
+// updated in vector loops (8 nodes per AVX-512 instruction; the three divisions by 1 + a of a damped
+// node had made the scalar update ~18 % of football Case 4's samples), their terms of the eleven
+// energy sums then added node by node in node order; constrained nodes take the scalar update_node.
+// Every version does the same IEEE operations in the same order (no FMA: the .cpp sets
+// fp-contract=off; plain arrays, no Eigen): the same bits on every processor, and as update_node.
 #include <array>
 #include <vector>
 
@@ -39,7 +39,12 @@ struct NodeUpdateData {
     double dtavg = 0, dt_half = 0;             // (dt(n-1/2) + dt(n+1/2))/2, dt(n+1/2)
 };
 
-/// Updates nodes [i0, i1) and returns their energy sums (in node order).
+/// Updates nodes [i0, i1) and returns their energy sums (in node order). Vectorized over the free
+/// nodes; the same bits as update_node on each node in order (test ExplicitNodeUpdate.*).
 NodeSums update_nodes(const NodeUpdateData& d, int i0, int i1);
+
+/// The scalar update of node i (any node: free, massless, fixed or prescribed), its terms added to
+/// p in the order update_nodes adds them: the reference of the vectorized update.
+void update_node(const NodeUpdateData& d, int i, NodeSums& p);
 
 }  // namespace fem::explicit_detail
