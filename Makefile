@@ -64,6 +64,10 @@ deps:
 # clean clones on this machine, so a rebuild after `make clean` or in a fresh clone recompiles only
 # what changed. Paths below the project are hashed relative to it (a clone elsewhere hits the same cache).
 export CCACHE_BASEDIR ?= $(CURDIR)
+# Depend mode: on a miss ccache reads the compiler's own dependency file instead of running the
+# preprocessor a second time, which a cold build (CI's clean clone on a new machine) pays on every
+# unit (cold builds of main: 1,416 s of CPU through ccache's preprocessor mode, 1,301 s without ccache).
+export CCACHE_DEPEND ?= 1
 CCACHE_LAUNCHER := $(if $(shell command -v ccache 2>/dev/null),-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
 
 # Configure once; the stamp is written only when CMake succeeded, so a configure that failed (say,
@@ -94,6 +98,7 @@ report: build
 REPORT_PAGE = python3 tests/report/check_report_page.py page figures/REPORT.html figures
 
 bench: build
+	cmake --build $(BUILD) --target benchmarks -j $(JOBS)
 	@set -e; for b in $(BUILD)/bench/*; do [ -x "$$b" ] && echo "== $$b" && "$$b"; done; true
 
 # Sanitizer runtime settings shared by `make fuzz` and `make sanitize`: stop at the first report;

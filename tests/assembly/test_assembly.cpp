@@ -6,11 +6,12 @@
 #include "assembly/model.hpp"
 #include "assembly/static_solve.hpp"
 #include "core/error.hpp"
+#include "../test_materials.hpp"
 
 using namespace fem;
+using fem::test::kSteel;
 
 namespace {
-const ElasticMaterial kSteel = ElasticMaterial::make("steel", 210e9, 0.3, 7800.0);
 // Full dense matrix from a stored lower triangle.
 Eigen::MatrixXd dense(const Eigen::SparseMatrix<double>& lower) {
     return Eigen::MatrixXd(Eigen::SparseMatrix<double>(lower.selfadjointView<Eigen::Lower>()));

@@ -9,12 +9,13 @@
 #include "core/error.hpp"
 #include "element/solid_elements.hpp"
 #include "mesh/mesh.hpp"
+#include "../test_materials.hpp"
 
 using namespace fem;
+using fem::test::kSteel;
 
 namespace {
 
-const ElasticMaterial kSteel = ElasticMaterial::make("steel", 210e9, 0.3, 7800.0);
 
 // A distorted hex: the unit cube with corners moved (still convex).
 std::vector<Vec3> distorted_hex() {

@@ -14,15 +14,16 @@
 #include "contact/contact.hpp"
 #include "explicit/rigid_motion.hpp"
 #include "core/error.hpp"
+#include "../test_materials.hpp"
 
 #include <fmt/format.h>
 
 using namespace fem;
+using fem::test::kSteel;
 using namespace fem::contact;
 
 namespace {
-const ElasticMaterial kRubber = ElasticMaterial::make("rubber", 6.1e6, 0.49, 1000);
-const ElasticMaterial kSteel = ElasticMaterial::make("steel", 210e9, 0.3, 7800);
+const ElasticMaterial kTable31Rubber = ElasticMaterial::make("rubber", 6.1e6, 0.49, 1000);
 
 Vec3 segment_centre(const Segment& s, std::span<const Vec3> x) {
     Vec3 c = Vec3::Zero();
@@ -60,12 +61,12 @@ Mesh box_tet4(double lx, double ly, double lz, int nx, int ny, int nz) {
 
 TEST(ContactSurface, Hex8BoxBoundaryFacesAreOutwardWithEq230Stiffness) {
     const Mesh m = box_hex8(1.0, 2.0, 3.0, 2, 3, 4, "box");
-    const ContactSurface s = ContactSurface::from_part(m, "box", kRubber, 1.0);
+    const ContactSurface s = ContactSurface::from_part(m, "box", kTable31Rubber, 1.0);
     EXPECT_EQ(s.segments.size(), 2u * (2 * 3 + 3 * 4 + 2 * 4));
     EXPECT_EQ(s.nodes.size(), static_cast<std::size_t>(3 * 4 * 5 - 1 * 2 * 3));  // all but the interior nodes
     const Vec3 centre(0.5, 1.0, 1.5);
     double area = 0;
-    const double B = kRubber.youngs_modulus / (3 * (1 - 2 * kRubber.poissons_ratio));  // Eq 2-33
+    const double B = kTable31Rubber.youngs_modulus / (3 * (1 - 2 * kTable31Rubber.poissons_ratio));  // Eq 2-33
     for (const auto& seg : s.segments) {
         EXPECT_EQ(seg.count, 4);
         const Vec3 n = segment_normal(seg, m.nodes), c = segment_centre(seg, m.nodes);
@@ -373,14 +374,14 @@ TEST(ContactPenalty, ForceDirectionMagnitudeAndShapeFunctionSplit) {
     probe.translate(Vec3(0.2, 0.3, 0.999));  // its bottom face 1 mm below the block's top face
     m.append(probe);
     const ContactSurface block = ContactSurface::from_part(m, "block", kSteel);
-    const ContactSurface small = ContactSurface::from_part(m, "probe", kRubber);
+    const ContactSurface small = ContactSurface::from_part(m, "probe", kTable31Rubber);
     ContactOptions o;
     o.penalty_scale = 0.5;
     ContactInterface ci("probe on block", small, block, o);
     std::vector<Vec3> f(m.node_count(), Vec3::Zero());
     ci.evaluate(m.nodes, {}, 0.0, 0.0, f);
     ASSERT_EQ(ci.contacts().size(), 4u);  // the probe's four bottom nodes
-    const double B = kRubber.bulk_modulus();
+    const double B = kTable31Rubber.bulk_modulus();
     const double k = 0.5 * B * 0.04 * 0.04 / 0.008;  // SLSFAC x Eq 2-30a of the softer (rubber) side
     Vec3 sum = Vec3::Zero();
     for (const auto& cp : ci.contacts()) {
@@ -419,8 +420,8 @@ TEST(ContactPenalty, PairForcesConserveMomentumExactly) {
     ContactOptions o;
     o.friction = {0.6, 0.4, 1.0};
     o.two_way = true;
-    ContactInterface ci("top on base", ContactSurface::from_part(m, "top", kRubber),
-                        ContactSurface::from_part(m, "base", kRubber), o);
+    ContactInterface ci("top on base", ContactSurface::from_part(m, "top", kTable31Rubber),
+                        ContactSurface::from_part(m, "base", kTable31Rubber), o);
     std::vector<Vec3> f(m.node_count(), Vec3::Zero());
     for (int cycle = 0; cycle < 3; ++cycle) {
         for (auto& fi : f) fi.setZero();
@@ -448,7 +449,7 @@ namespace {
 ContactInterface probe_against_rigid_block(const Mesh& m, const std::string& name) {
     ContactOptions o;
     o.edge_tolerance = 0.05;
-    return ContactInterface(name, ContactSurface::from_part(m, "probe", kRubber),
+    return ContactInterface(name, ContactSurface::from_part(m, "probe", kTable31Rubber),
                             ContactSurface::rigid_part(m, "block", 0.05), o);
 }
 }  // namespace
@@ -527,7 +528,7 @@ TEST(ContactPenalty, NodeInADentIsKeptByTheFaceItPenetrates) {
 TEST(ContactFriction, StickUntilStaticLimitThenSlideWithEq235) {
     Mesh m = box_hex8(0.1, 0.1, 0.1, 1, 1, 1, "cube");
     m.append(parallelogram_quad4(Vec3(0.05, 0.05, 0.0), Vec3(2, 0, 0), Vec3(0, 2, 0), 1, 1, "plate"));
-    const ContactSurface cube = ContactSurface::from_part(m, "cube", kRubber);
+    const ContactSurface cube = ContactSurface::from_part(m, "cube", kTable31Rubber);
     ContactOptions o;
     o.friction = {0.8, 0.5, 20.0};  // mu_s, mu_d, c_d [s/m]
     ContactInterface ci("cube on plate", cube, ContactSurface::rigid_part(m, "plate", 0.05), o);
@@ -620,8 +621,8 @@ TEST(ContactTwoWay, SymmetricPassCatchesMasterNodesInsideSlaveFaces) {
     for (bool two_way : {false, true}) {
         ContactOptions o;
         o.two_way = two_way;
-        ContactInterface ci("block on pad", ContactSurface::from_part(m, "block", kRubber),
-                            ContactSurface::from_part(m, "pad", kRubber), o);
+        ContactInterface ci("block on pad", ContactSurface::from_part(m, "block", kTable31Rubber),
+                            ContactSurface::from_part(m, "pad", kTable31Rubber), o);
         std::vector<Vec3> f(m.node_count(), Vec3::Zero());
         ci.evaluate(m.nodes, {}, 0.0, 0.0, f);
         double fz_block = 0;
@@ -652,7 +653,7 @@ TEST(RigidMasterTest, RotatingRigidPartPushesNodesAndReportsTheReaction) {
     EXPECT_TRUE(drum.rigid);
     EXPECT_TRUE(drum.nodes.empty());
     EXPECT_EQ(drum.segments.size(), 24u);
-    ContactInterface ci("probe on drum", ContactSurface::from_part(m, "probe", kRubber), std::move(drum));
+    ContactInterface ci("probe on drum", ContactSurface::from_part(m, "probe", kTable31Rubber), std::move(drum));
     EXPECT_TRUE(ci.rigid_master());
     std::vector<Vec3> f(m.node_count(), Vec3::Zero());
     ci.evaluate(m.nodes, {}, 0.0, 0.0, f);
@@ -685,16 +686,16 @@ TEST(RigidMasterTest, RotatingRigidPartPushesNodesAndReportsTheReaction) {
     EXPECT_THROW(ContactSurface::rigid_part(m, "drum", 0.0), InputError);
     // A rigid side is a master only; two-way contact needs a deformable master.
     EXPECT_THROW(ContactInterface("bad", ContactSurface::rigid_part(m, "drum", 0.02),
-                                  ContactSurface::from_part(m, "probe", kRubber)),
+                                  ContactSurface::from_part(m, "probe", kTable31Rubber)),
                  InputError);
     ContactOptions two;
     two.two_way = true;
-    EXPECT_THROW(ContactInterface("bad", ContactSurface::from_part(m, "probe", kRubber),
+    EXPECT_THROW(ContactInterface("bad", ContactSurface::from_part(m, "probe", kTable31Rubber),
                                   ContactSurface::rigid_part(m, "drum", 0.02), two),
                  InputError);
     ContactOptions bad;
     bad.penalty_scale = 0.0;
-    EXPECT_THROW(ContactInterface("bad", ContactSurface::from_part(m, "probe", kRubber),
+    EXPECT_THROW(ContactInterface("bad", ContactSurface::from_part(m, "probe", kTable31Rubber),
                                   ContactSurface::rigid_part(m, "drum", 0.02), bad),
                  InputError);
 }
@@ -705,7 +706,7 @@ TEST(ContactSurface, BallMeshIsValidAndItsSurfaceIsASphere) {
     const double R = 0.05;
     const Mesh m = fem::test::ball_hex8(R, 12, 0.5, 0.5);
     EXPECT_NO_THROW(validate(m));
-    const ContactSurface s = ContactSurface::from_part(m, "ball", kRubber);
+    const ContactSurface s = ContactSurface::from_part(m, "ball", kTable31Rubber);
     EXPECT_EQ(s.segments.size(), 6u * 12 * 12);
     double area = 0;
     for (const auto& seg : s.segments) area += seg.area;
@@ -740,8 +741,8 @@ TEST(ContactPenalty, SkippingFarCandidatesChangesNothing) {
         ContactOptions o;
         o.friction = {0.4, 0.3, 10.0};
         o.two_way = true;
-        Scenario sc{"ball on block", m, ContactSurface::from_part(m, "ball", kRubber),
-                    ContactSurface::from_part(m, "block", kRubber), o, {}};
+        Scenario sc{"ball on block", m, ContactSurface::from_part(m, "ball", kTable31Rubber),
+                    ContactSurface::from_part(m, "block", kTable31Rubber), o, {}};
         const Vec3 c0(0.07, 0.08, 0.083);
         sc.move = [c0](const Vec3& X, double s) {
             // Down 10 mm (its flattened bottom 4.5 mm into the block) in the first third, slide 60 mm in

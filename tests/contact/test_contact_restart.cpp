@@ -22,7 +22,7 @@ using namespace fem::contact;
 namespace fs = std::filesystem;
 
 namespace {
-const ElasticMaterial kRubber = ElasticMaterial::make("rubber", 2e6, 0.3, 1000);
+const ElasticMaterial kCompressibleRubber = ElasticMaterial::make("rubber", 2e6, 0.3, 1000);
 
 Mesh block_on_pallet() {
     Mesh mesh = box_hex8(0.03, 0.03, 0.015, 3, 3, 2, "block");
@@ -40,7 +40,7 @@ struct PalletModel {
 PalletModel make_model(const Mesh& mesh, bool with_contact = true) {
     PalletModel r;
     r.model = std::make_unique<ExplicitModel>(mesh);
-    r.model->add_hex8("block", kRubber);
+    r.model->add_hex8("block", kCompressibleRubber);
     r.model->set_mass_damping("block", 20.0);
     // A downward body force ramped over 10 ms (5 g: the block stays pressed on the pallet, no bounce).
     r.model->set_gravity(Vec3(0, 0, -49.05), Curve({{0, 0}, {0.01, 1}}, "press"));
@@ -52,7 +52,7 @@ PalletModel make_model(const Mesh& mesh, bool with_contact = true) {
     if (with_contact) {
         ContactOptions co;
         co.friction = {0.4, 0.3, 5.0};
-        r.contact = &add_contact(*r.model, ContactInterface("block on pallet", ContactSurface::from_part(mesh, "block", kRubber),
+        r.contact = &add_contact(*r.model, ContactInterface("block on pallet", ContactSurface::from_part(mesh, "block", kCompressibleRubber),
                                                             ContactSurface::rigid_part(mesh, "pallet", 5e-3), co));
     }
     return r;
@@ -183,10 +183,10 @@ TEST(ContactRestart, RestartFileOfAnotherModelIsRefused) {
               std::string::npos)
         << refusal(*other_mesh.model);
     ExplicitModel other_groups(mesh);
-    other_groups.add_hex8("block", kRubber);
+    other_groups.add_hex8("block", kCompressibleRubber);
     other_groups.add_point_mass("tip", 0, 1e-3);
     other_groups.add_force_provider(std::make_unique<ContactProvider>(
-        ContactInterface("block on pallet", ContactSurface::from_part(mesh, "block", kRubber),
+        ContactInterface("block on pallet", ContactSurface::from_part(mesh, "block", kCompressibleRubber),
                          ContactSurface::rigid_part(mesh, "pallet", 5e-3))));
     EXPECT_NE(refusal(other_groups).find("element group 1 is missing in the file but part 'tip'"), std::string::npos)
         << refusal(other_groups);

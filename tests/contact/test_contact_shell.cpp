@@ -16,11 +16,11 @@
 #include "contact/explicit_contact.hpp"
 
 using namespace fem;
+using fem::test::kShellSteel;
 using namespace fem::contact;
 using fem::test::quiet;
 
 namespace {
-const ElasticMaterial kSteel = ElasticMaterial::make("steel", 210e9, 0.28, 7700);
 
 // A 2 x 2 shell plate 0.1 x 0.1 at z = 0 (part "plate", normal +z) and a one-element probe plate
 // 0.02 x 0.02 (part "probe") centred over it at height z.
@@ -37,8 +37,8 @@ Mesh plate_and_probe(double z) {
 // probe of thickness t_probe.
 Vec3 probe_force(double z, double t_plate, double t_probe, double z_before = NAN) {
     const Mesh m0 = plate_and_probe(std::isnan(z_before) ? z : z_before);
-    ContactInterface ci("probe on plate", ContactSurface::from_part(m0, "probe", kSteel, 1.0, t_probe),
-                        ContactSurface::from_part(m0, "plate", kSteel, 1.0, t_plate));
+    ContactInterface ci("probe on plate", ContactSurface::from_part(m0, "probe", kShellSteel, 1.0, t_probe),
+                        ContactSurface::from_part(m0, "plate", kShellSteel, 1.0, t_plate));
     std::vector<Vec3> x = m0.nodes, f(x.size(), Vec3::Zero());
     ci.evaluate(x, {}, 0.0, 0.0, f);
     if (!std::isnan(z_before)) {
@@ -54,16 +54,16 @@ Vec3 probe_force(double z, double t_plate, double t_probe, double z_before = NAN
 
 TEST(ContactShellThickness, SurfaceCarriesOffsetsAndSides) {
     const Mesh m = plate_and_probe(0.001);
-    const ContactSurface thick = ContactSurface::from_part(m, "plate", kSteel, 1.0, 4e-3);
+    const ContactSurface thick = ContactSurface::from_part(m, "plate", kShellSteel, 1.0, 4e-3);
     for (const auto& s : thick.segments) {
         EXPECT_TRUE(s.two_sided);
         EXPECT_DOUBLE_EQ(s.offset, 2e-3);
     }
     ASSERT_EQ(thick.node_offset.size(), thick.nodes.size());
     for (double o : thick.node_offset) EXPECT_DOUBLE_EQ(o, 2e-3);
-    const ContactSurface thin = ContactSurface::from_part(m, "plate", kSteel);
+    const ContactSurface thin = ContactSurface::from_part(m, "plate", kShellSteel);
     for (const auto& s : thin.segments) EXPECT_FALSE(s.two_sided);
-    EXPECT_THROW(ContactSurface::from_part(m, "plate", kSteel, 1.0, -1e-3), InputError);
+    EXPECT_THROW(ContactSurface::from_part(m, "plate", kShellSteel, 1.0, -1e-3), InputError);
 }
 
 // The probe's nodes (no thickness) against a 4 mm plate: 1 mm above the mid-surface they are 1 mm
@@ -75,7 +75,7 @@ TEST(ContactShellThickness, SurfaceCarriesOffsetsAndSides) {
 // mid-surface (the earlier behaviour): a node 1 mm above is free, 1 mm below is pushed up.
 TEST(ContactShellThickness, GapsFromTheOffsetSurfacesOnTheApproachSide) {
     const Mesh m = plate_and_probe(0.0);
-    const ContactSurface probe = ContactSurface::from_part(m, "probe", kSteel);
+    const ContactSurface probe = ContactSurface::from_part(m, "probe", kShellSteel);
     const double k = 0.1 * probe.node_stiffness[0];  // the probe's corner k is the smaller one
     for (double kk : probe.node_stiffness) EXPECT_DOUBLE_EQ(kk, probe.node_stiffness[0]);
     const double tol = 1e-9 * k * 1e-3;
@@ -89,7 +89,7 @@ TEST(ContactShellThickness, GapsFromTheOffsetSurfacesOnTheApproachSide) {
     expect(probe_force(3e-3, 4e-3, 0.0), 0.0, "3 mm above a 4 mm plate");
     expect(probe_force(-0.5e-3, 4e-3, 0.0, 1e-3), 4 * k * 2.5e-3, "pushed past the mid-surface from above");
     expect(probe_force(-0.5e-3, 4e-3, 0.0), -4 * k * 1.5e-3, "the same place approached from below");
-    const ContactSurface thick_probe = ContactSurface::from_part(m, "probe", kSteel, 1.0, 2e-3);
+    const ContactSurface thick_probe = ContactSurface::from_part(m, "probe", kShellSteel, 1.0, 2e-3);
     expect(probe_force(2.5e-3, 4e-3, 2e-3), 4 * 0.1 * thick_probe.node_stiffness[0] * 0.5e-3, "2 mm probe at 2.5 mm");
     expect(probe_force(1e-3, 0.0, 0.0), 0.0, "1 mm above, no thickness");
     expect(probe_force(-1e-3, 0.0, 0.0), 4 * k * 1e-3, "1 mm below, no thickness (one-sided)");
@@ -108,10 +108,10 @@ double rest_height(Mesh mesh, double t, double z0, const std::function<void(Expl
     mesh.append(plate);
     ExplicitModel model(mesh);
     add_base(model, mesh);
-    model.add_shells("plate", kSteel, {.thickness = t});
+    model.add_shells("plate", kShellSteel, {.thickness = t});
     model.set_gravity(Vec3(0, 0, -1000.0));
     model.set_mass_damping("plate", 3000.0);
-    add_contact(model, ContactInterface("plate on base", ContactSurface::from_part(mesh, "plate", kSteel, 1.0, t),
+    add_contact(model, ContactInterface("plate on base", ContactSurface::from_part(mesh, "plate", kShellSteel, 1.0, t),
                                         base_surface(mesh)));
     ExplicitSolver solver(model, quiet(6e-3));
     const RunSummary sum = solver.run();
@@ -134,23 +134,23 @@ TEST(ContactShellThickness, PlatesComeToRestAtTheirThickness) {
     const double z_block = rest_height(
         block, 4e-3, 2.1e-3,
         [](ExplicitModel& m, const Mesh& mesh) {
-            m.add_hex8("base", kSteel);
+            m.add_hex8("base", kShellSteel);
             m.fix(mesh.node_set("z0"), Dofs::all());
             m.fix(mesh.node_set("z1"), Dofs::all());
         },
-        [](const Mesh& mesh) { return ContactSurface::from_part(mesh, "base", kSteel); });
+        [](const Mesh& mesh) { return ContactSurface::from_part(mesh, "base", kShellSteel); });
     EXPECT_NEAR(z_block, 2e-3, 1e-6);
 
     Mesh base = rectangle_quads(0.1, 0.1, 4, 4, ElementShape::Quad4, "base");
     const double z_shell = rest_height(
         base, 2e-3, 4.1e-3,
         [](ExplicitModel& m, const Mesh& mesh) {
-            m.add_shells("base", kSteel, {.thickness = 6e-3});
+            m.add_shells("base", kShellSteel, {.thickness = 6e-3});
             std::vector<int> all;
             for (int b : mesh.blocks_of_part("base"))
                 for (int n : mesh.blocks[b].connectivity) all.push_back(n);
             m.fix(all, Dofs::all());
         },
-        [](const Mesh& mesh) { return ContactSurface::from_part(mesh, "base", kSteel, 1.0, 6e-3); });
+        [](const Mesh& mesh) { return ContactSurface::from_part(mesh, "base", kShellSteel, 1.0, 6e-3); });
     EXPECT_NEAR(z_shell, 4e-3, 1e-6);
 }

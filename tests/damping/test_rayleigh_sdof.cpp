@@ -11,7 +11,7 @@
 
 using namespace fem;
 using namespace fem::damping;
-constexpr double pi = std::numbers::pi;
+using std::numbers::pi;
 
 TEST(Rayleigh, ThesisExampleEq246And247) {
     // Sec 2.5.1: omega1 = 2 pi 10, omega2 = 2 pi 20, zeta1 = zeta2 = 0.1 -> alpha = 8.38 1/s, beta = 0.001 s.

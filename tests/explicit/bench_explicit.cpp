@@ -34,6 +34,7 @@
 #include "explicit/solver.hpp"
 
 using namespace fem;
+using namespace fem::test;
 
 namespace {
 double cpu_seconds() {  // process CPU time, all threads
@@ -46,7 +47,6 @@ double load1() {
     return getloadavg(l, 1) == 1 ? l[0] : -1.0;
 }
 
-const ElasticMaterial kRubber = ElasticMaterial::make("rubber", 5e6, 0.49, 1100);
 const ElasticMaterial kSteelShell = ElasticMaterial::make("steel", 210e9, 0.28, 7700);
 
 // The table printed at the end: one row per (what, threads), the last measurement of each.

@@ -4,11 +4,30 @@
 // rigid rotation), and the Table 2-8 wire.
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <numbers>
+#include <vector>
 
 #include "core/error.hpp"
 #include "explicit/solver.hpp"
+#include "../test_materials.hpp"
 
 namespace fem::test {
+
+/// pi, for the closed-form frequencies and periods the tests compare with.
+inline constexpr double kPi = std::numbers::pi;
+
+/// The rotation by `angle` (rad) about `axis` (any length).
+inline Mat3 rotation(double angle, const Vec3& axis) {
+    return Eigen::AngleAxisd(angle, axis.normalized()).toRotationMatrix();
+}
+
+/// Times of the upward zero crossings of a sampled signal (linear interpolation between samples).
+inline std::vector<double> upward_crossings(const std::vector<double>& t, const std::vector<double>& y) {
+    std::vector<double> c;
+    for (std::size_t i = 1; i < y.size(); ++i)
+        if (y[i - 1] < 0 && y[i] >= 0) c.push_back(t[i - 1] + (t[i] - t[i - 1]) * (-y[i - 1]) / (y[i] - y[i - 1]));
+    return c;
+}
 
 /// The message of the InputError that f() throws ("no error" when it throws none), for tests that
 /// check that bad input is refused naming the culprit.
@@ -69,8 +88,7 @@ inline NodalState state_at_rest(const Mesh& mesh) {
 /// wire of 0.6 mm radius as `mesh`'s beams (line_beam2 with node sets "start", "end"), a 0.015 g tip
 /// mass, clamped at the start, a 0.003 N tip pulse for 0.2 s. Returns the tip node.
 inline int add_table_2_8_wire(ExplicitModel& model, const Mesh& mesh) {
-    const auto steel = ElasticMaterial::make("steel", 209e9, 0.3, 7957);
-    model.add_beams("beam", steel, {beam::Section::circular(0.6e-3)});
+    model.add_beams("beam", kWireSteel, {beam::Section::circular(0.6e-3)});
     const int tip = mesh.node_set("end")[0];
     model.add_point_mass("tip mass", tip, 0.015e-3);
     model.fix(mesh.node_set("start"), Dofs::all());

@@ -12,21 +12,13 @@
 #include "explicit/solver.hpp"
 
 using namespace fem;
+using namespace fem::test;
 using fem::test::quiet;
 
 namespace {
-constexpr double kPi = std::numbers::pi;
-const ElasticMaterial kWire = ElasticMaterial::make("steel wire", 209e9, 0.3, 7957);  // Table 2-8
-
-Mat3 rot(double angle, Vec3 axis) { return Eigen::AngleAxisd(angle, axis.normalized()).toRotationMatrix(); }
 
 
-std::vector<double> upward_crossings(const std::vector<double>& t, const std::vector<double>& y) {
-    std::vector<double> c;
-    for (std::size_t i = 1; i < y.size(); ++i)
-        if (y[i - 1] < 0 && y[i] >= 0) c.push_back(t[i - 1] + (t[i] - t[i - 1]) * (-y[i - 1]) / (y[i] - y[i - 1]));
-    return c;
-}
+
 
 // Root lambda of the cantilever-with-tip-mass frequency equation (mass ratio r = M / (rho A L)):
 // 1 + cos l cosh l + r l (cos l sinh l - sin l cosh l) = 0, first root, by bisection.
@@ -49,15 +41,15 @@ TEST(BeamKernel, LargeRigidRotationCreatesNoForce) {
     const auto ref = beam::make_reference(a, b);
     beam::Result r;
     for (double deg : {45.0, 90.0, 180.0, 270.0}) {
-        const Mat3 R = rot(deg * kPi / 180, Vec3(0.3, -1, 2));
+        const Mat3 R = rotation(deg * kPi / 180, Vec3(0.3, -1, 2));
         const Vec3 shift(1, -2, 0.5);
-        beam::internal_force(ref, s, kWire, R * a + shift, R * b + shift, R, R, r);
+        beam::internal_force(ref, s, kWireSteel, R * a + shift, R * b + shift, R, R, r);
         EXPECT_LT(std::abs(r.strain_energy), 1e-18) << deg;
         // Round-off only: EA = 5.9e4 N times the round-off of the strain of a 4 mm element 2 m from
         // the origin (~1e-13) gives ~1e-8 N (a first guess of 1e-9 N was below round-off); a beam with
         // linear kinematics would give ~EA = 1e4 N here. Moments: EI/L = 0.33 N m times ~1e-13.
         for (int i = 0; i < 2; ++i) {
-            EXPECT_LT(r.force[i].norm(), 1e-12 * kWire.youngs_modulus * s.area) << deg;
+            EXPECT_LT(r.force[i].norm(), 1e-12 * kWireSteel.youngs_modulus * s.area) << deg;
             EXPECT_LT(r.moment[i].norm(), 1e-12) << deg;
         }
     }
@@ -68,27 +60,27 @@ TEST(BeamKernel, SmallDeformationGivesEulerBernoulliStiffness) {
     const double L = 0.05, th = 1e-6, du = 1e-9;
     const auto ref = beam::make_reference(Vec3::Zero(), Vec3(L, 0, 0), Vec3(0, 1, 0));
     beam::Result r;
-    const double EI = kWire.youngs_modulus * s.iz;
+    const double EI = kWireSteel.youngs_modulus * s.iz;
     // Rotate node 2 by theta about z: M1 = 2EI/L theta, M2 = 4EI/L theta, shear 6EI/L^2 theta.
-    beam::internal_force(ref, s, kWire, Vec3::Zero(), Vec3(L, 0, 0), Mat3::Identity(), rot(th, Vec3::UnitZ()), r);
+    beam::internal_force(ref, s, kWireSteel, Vec3::Zero(), Vec3(L, 0, 0), Mat3::Identity(), rotation(th, Vec3::UnitZ()), r);
     EXPECT_NEAR(r.moment[0].z(), 2 * EI / L * th, 1e-6 * 2 * EI / L * th);
     EXPECT_NEAR(r.moment[1].z(), 4 * EI / L * th, 1e-6 * 4 * EI / L * th);
     EXPECT_NEAR(r.force[1].y(), -6 * EI / (L * L) * th, 1e-6 * 6 * EI / (L * L) * th);
     EXPECT_NEAR(r.strain_energy, 2 * EI / L * th * th, 1e-5 * 2 * EI / L * th * th);
     // Axial: N = EA du / L.
-    beam::internal_force(ref, s, kWire, Vec3::Zero(), Vec3(L + du, 0, 0), Mat3::Identity(), Mat3::Identity(), r);
-    EXPECT_NEAR(r.force[1].x(), kWire.youngs_modulus * s.area * du / L, 1e-5 * kWire.youngs_modulus * s.area * du / L);
+    beam::internal_force(ref, s, kWireSteel, Vec3::Zero(), Vec3(L + du, 0, 0), Mat3::Identity(), Mat3::Identity(), r);
+    EXPECT_NEAR(r.force[1].x(), kWireSteel.youngs_modulus * s.area * du / L, 1e-5 * kWireSteel.youngs_modulus * s.area * du / L);
     // Torsion: T = GJ phi / L.
-    beam::internal_force(ref, s, kWire, Vec3::Zero(), Vec3(L, 0, 0), Mat3::Identity(), rot(th, Vec3::UnitX()), r);
-    EXPECT_NEAR(r.moment[1].x(), kWire.shear_modulus() * s.torsion * th / L, 1e-6 * kWire.shear_modulus() * s.torsion * th / L);
+    beam::internal_force(ref, s, kWireSteel, Vec3::Zero(), Vec3(L, 0, 0), Mat3::Identity(), rotation(th, Vec3::UnitX()), r);
+    EXPECT_NEAR(r.moment[1].x(), kWireSteel.shear_modulus() * s.torsion * th / L, 1e-6 * kWireSteel.shear_modulus() * s.torsion * th / L);
 }
 
 TEST(BeamKernel, RotationalInertiaScalingKeepsTheAxialStep) {
     // Table 2-8 element: L = 4 mm, d = 0.6 mm. The step must be the Table 2-1 beam value L/c.
     const auto s = beam::Section::circular(0.6e-3);
-    const double L = 0.004, c = std::sqrt(kWire.youngs_modulus / kWire.density);
-    EXPECT_NEAR(beam::critical_time_step(s, kWire, Vec3::Zero(), Vec3(L, 0, 0)), L / c, 1e-12 * L / c);
-    EXPECT_GE(beam::nodal_rotational_inertia(s, kWire, L), beam::physical_rotational_inertia(s, kWire, L));
+    const double L = 0.004, c = std::sqrt(kWireSteel.youngs_modulus / kWireSteel.density);
+    EXPECT_NEAR(beam::critical_time_step(s, kWireSteel, Vec3::Zero(), Vec3(L, 0, 0)), L / c, 1e-12 * L / c);
+    EXPECT_GE(beam::nodal_rotational_inertia(s, kWireSteel, L), beam::physical_rotational_inertia(s, kWireSteel, L));
 }
 
 namespace {
@@ -102,7 +94,7 @@ struct BeamRun {
 BeamRun cantilever(double L, double d, int n, double tip_mass, double periods, double T_guess) {
     Mesh mesh = line_beam2(Vec3::Zero(), Vec3(L, 0, 0), n, "wire");
     ExplicitModel model(mesh);
-    model.add_beams("wire", kWire, {beam::Section::circular(d)});
+    model.add_beams("wire", kWireSteel, {beam::Section::circular(d)});
     const int tip = mesh.node_set("end")[0];
     if (tip_mass > 0) model.add_point_mass("tip mass", tip, tip_mass);
     model.fix(mesh.node_set("start"), Dofs::all());
@@ -139,7 +131,7 @@ TEST(BeamCantilever, FirstFrequencyMatchesEulerBernoulli) {
     const double L = 0.4, d = 2e-3;
     const auto s = beam::Section::circular(d);
     const double w1 = 1.875104068711961 * 1.875104068711961 *
-                      std::sqrt(kWire.youngs_modulus * s.iz / (kWire.density * s.area * L * L * L * L));
+                      std::sqrt(kWireSteel.youngs_modulus * s.iz / (kWireSteel.density * s.area * L * L * L * L));
     const auto r = cantilever(L, d, 10, 0.0, 2.2, 2 * kPi / w1);
     std::printf("beam cantilever: omega1 %.5f rad/s vs Euler-Bernoulli %.5f (%.3f %%); energy error %.2e\n", r.omega,
                 w1, 100 * (r.omega / w1 - 1), r.summary.energy.relative_error());
@@ -152,9 +144,9 @@ TEST(BeamCantilever, FirstFrequencyMatchesEulerBernoulli) {
 TEST(BeamCantilever, TipMassFrequencyMatchesExactFrequencyEquation) {
     const double L = 0.4, d = 2e-3;
     const auto s = beam::Section::circular(d);
-    const double m = kWire.density * s.area * L;
+    const double m = kWireSteel.density * s.area * L;
     const double lam = tip_mass_lambda(1.0);
-    const double w1 = lam * lam * std::sqrt(kWire.youngs_modulus * s.iz / (kWire.density * s.area * L * L * L * L));
+    const double w1 = lam * lam * std::sqrt(kWireSteel.youngs_modulus * s.iz / (kWireSteel.density * s.area * L * L * L * L));
     const auto r = cantilever(L, d, 10, m, 2.2, 2 * kPi / w1);
     std::printf("beam + tip mass: omega1 %.5f rad/s vs exact %.5f (lambda %.5f) (%.3f %%)\n", r.omega, w1, lam,
                 100 * (r.omega / w1 - 1));
@@ -168,7 +160,7 @@ TEST(BeamRotation, FreeSpinCreatesNoStrainEnergy) {
     const double L = 0.2;
     Mesh mesh = line_beam2(Vec3(-L / 2, 0, 0), Vec3(L / 2, 0, 0), 20, "wire");
     ExplicitModel model(mesh);
-    model.add_beams("wire", kWire, {beam::Section::circular(1e-3)});
+    model.add_beams("wire", kWireSteel, {beam::Section::circular(1e-3)});
     const Vec3 w(0, 0.6, 0.8);  // |w| = 1 rad/s... scaled below
     const Vec3 omega = 20.0 * w;
     model.set_initial_velocity([&](const Vec3& X) { return Vec3(omega.cross(X)); });
@@ -195,6 +187,6 @@ TEST(PointMass, BadInputIsRefusedWithTheCulpritNamed) {
         EXPECT_NE(std::string(e.what()).find("node 7"), std::string::npos) << e.what();
     }
     model.add_point_mass("tip", 2, -1.0);
-    model.add_beams("wire", kWire, {beam::Section::circular(1e-3)});
+    model.add_beams("wire", kWireSteel, {beam::Section::circular(1e-3)});
     EXPECT_THROW(ExplicitSolver(model, quiet(1.0)), InputError);
 }

@@ -18,11 +18,10 @@
 #include "explicit/solver.hpp"
 
 using namespace fem;
+using namespace fem::test;
 using fem::test::quiet;
 
 namespace {
-constexpr double kPi = std::numbers::pi;
-const ElasticMaterial kSteel = ElasticMaterial::make("steel", 210e9, 0.3, 7800);
 
 
 // Cantilever first mode shape (clamped at 0, free at 1), Euler-Bernoulli.
@@ -31,13 +30,6 @@ double mode1(double xi) {
     return std::cosh(b * xi) - std::cos(b * xi) - s * (std::sinh(b * xi) - std::sin(b * xi));
 }
 
-// Times of upward zero crossings of a sampled signal (linear interpolation).
-std::vector<double> upward_crossings(const std::vector<double>& t, const std::vector<double>& y) {
-    std::vector<double> c;
-    for (std::size_t i = 1; i < y.size(); ++i)
-        if (y[i - 1] < 0 && y[i] >= 0) c.push_back(t[i - 1] + (t[i] - t[i - 1]) * (-y[i - 1]) / (y[i] - y[i - 1]));
-    return c;
-}
 
 // Local maxima of a sampled signal (parabolic refinement of the peak value).
 std::vector<std::pair<double, double>> peaks(const std::vector<double>& t, const std::vector<double>& y) {

@@ -27,11 +27,12 @@
 #include "explicit/groups.hpp"
 #include "explicit/parallel.hpp"
 #include "mesh/mesh.hpp"
+#include "explicit_test_support.hpp"
 
 using namespace fem;
+using namespace fem::test;
 
 namespace {
-const ElasticMaterial kRubber = ElasticMaterial::make("rubber", 5e6, 0.49, 1100);
 
 // A warped hexahedron: unit cube, every node moved randomly by up to `w`, then scaled, rotated and
 // placed far from the origin (round-off of absolute coordinates).

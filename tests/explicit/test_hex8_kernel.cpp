@@ -10,12 +10,12 @@
 #include "element/hex8_explicit.hpp"
 #include "explicit/groups.hpp"
 #include "mesh/mesh.hpp"
+#include "explicit_test_support.hpp"
 
 using namespace fem;
+using namespace fem::test;
 
 namespace {
-const ElasticMaterial kRubber = ElasticMaterial::make("rubber", 5e6, 0.49, 1100);
-const ElasticMaterial kSteel = ElasticMaterial::make("steel", 210e9, 0.3, 7800);
 
 std::array<Vec3, 8> unit_cube() {
     return {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1, 1, 0), Vec3(0, 1, 0),
@@ -28,7 +28,6 @@ Mat3 neo_hookean_cauchy(const Mat3& F, const ElasticMaterial& m) {
     return (mu * (F * F.transpose() - Mat3::Identity()) + la * std::log(J) * Mat3::Identity()) / J;
 }
 
-Mat3 rotation(double angle, Vec3 axis) { return Eigen::AngleAxisd(angle, axis.normalized()).toRotationMatrix(); }
 }  // namespace
 
 TEST(Hex8Kernel, UniformGradientOfCubeAndVolume) {

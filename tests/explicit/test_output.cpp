@@ -14,12 +14,13 @@
 #include "core/error.hpp"
 #include "explicit/solver.hpp"
 #include "io/hdf5.hpp"
+#include "explicit_test_support.hpp"
 
 using namespace fem;
+using namespace fem::test;
 namespace fs = std::filesystem;
 
 namespace {
-const ElasticMaterial kSteel = ElasticMaterial::make("steel", 210e9, 0.3, 7800);
 
 // A steel bar clamped at x = 0 and pulled sideways at its free end (10 N per node, ramped over 0.1 ms).
 std::unique_ptr<ExplicitModel> pulled_bar(const Mesh& mesh) {

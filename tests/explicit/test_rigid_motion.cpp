@@ -9,12 +9,13 @@
 
 #include "core/error.hpp"
 #include "explicit/rigid_motion.hpp"
+#include "explicit_test_support.hpp"
 
 using namespace fem;
+using namespace fem::test;
 using std::numbers::pi;
 
 namespace {
-Mat3 rot(const Vec3& axis, double angle) { return Eigen::AngleAxisd(angle, axis.normalized()).toRotationMatrix(); }
 // Central difference of the position (h = 1e-6: truncation ~ h^2 |x'''|, round-off ~ 1e-16 / h).
 Vec3 fd_velocity(const RigidMotion& m, const Vec3& X, double t) {
     const double h = 1e-6;
@@ -72,16 +73,16 @@ TEST(RigidMotion, DrumSpinThenHandFlipIsOneComposedMotion) {
         RigidMotion::rotation(Vec3::Zero(), Vec3::UnitZ(), Curve::steps({{0, 0}, {t_flip, w_flip}, {t_flip + 0.5, 0}}));
     const RigidMotion hand = compose(flip, drum);
     const Vec3 X(0.15, 0.02, -0.03);
-    const auto drum_x = [&](double t) { return Vec3(cd + rot(ad, w * std::min(t, t_stop)) * (X - cd)); };
+    const auto drum_x = [&](double t) { return Vec3(cd + rotation(w * std::min(t, t_stop), ad) * (X - cd)); };
     const auto flip_angle = [&](double t) { return w_flip * std::clamp(t - t_flip, 0.0, 0.5); };
     for (double t : {0.0, 0.4, 1.0, t_stop, 1.6, 1.8, 2.0, 2.7}) {
-        const Vec3 closed = rot(Vec3::UnitZ(), flip_angle(t)) * drum_x(t);
+        const Vec3 closed = rotation(flip_angle(t), Vec3::UnitZ()) * drum_x(t);
         EXPECT_NEAR((hand.position(X, t) - closed).norm(), 0.0, 2e-16 * 16) << t;
     }
     // 135 degrees at the end, about z: the drum axis has turned with the hand.
     EXPECT_NEAR(flip_angle(2.7), 0.75 * pi, 2e-3);  // 4.71 x 0.5 = 2.355 = 135 degrees (4.71 ~ 3 pi / 2)
     const Vec3 ad_end = hand.pose(2.7).R * ad;
-    EXPECT_NEAR((ad_end - rot(Vec3::UnitZ(), flip_angle(2.7)) * ad).norm(), 0.0, 1e-15);
+    EXPECT_NEAR((ad_end - rotation(flip_angle(2.7), Vec3::UnitZ()) * ad).norm(), 0.0, 1e-15);
     // Velocities: the drum spinning alone, then the hand turning with the drum stopped.
     for (double t : {0.4, 1.0}) {
         const Vec3 x = hand.position(X, t);

@@ -13,11 +13,11 @@
 #include "explicit_test_support.hpp"
 
 using namespace fem;
+using namespace fem::test;
 using fem::test::quiet;
 namespace fs = std::filesystem;
 
 namespace {
-const ElasticMaterial kRubber = ElasticMaterial::make("rubber", 6.1e6, 0.45, 1000);
 
 // A 2 x 2 x 2 hex "drum" block around (0.1, 0, 0) and a rubber bar "finger" beside it.
 Mesh drum_and_finger() {
@@ -38,7 +38,7 @@ Mesh drum_and_finger() {
 TEST(RigidPart, FollowsAComposedMotionExactlyAndIsInTheOutput) {
     const Mesh mesh = drum_and_finger();
     ExplicitModel model(mesh);
-    model.add_hex8("finger", kRubber);
+    model.add_hex8("finger", kFingerRubber);
     const double w = 20.0, t_stop = 0.5 * std::numbers::pi / w;
     const RigidMotion spin =
         RigidMotion::rotation(Vec3(0.1, 0, 0), Vec3::UnitX(), Curve::steps({{0, w}, {t_stop, 0}}, "spin"));
@@ -100,7 +100,7 @@ TEST(RigidPart, SharingNodesWithADeformablePartTiesThem) {
     plate.add(std::vector<int>{root[0], root[1], root[3], root[2]});
     mesh.blocks.push_back(plate);
     ExplicitModel model(mesh);
-    model.add_hex8("finger", kRubber);
+    model.add_hex8("finger", kFingerRubber);
     model.set_mass_damping("finger", 7.5);
     const RigidMotion drum = RigidMotion::rotation(Vec3::Zero(), Vec3::UnitZ(), Curve({{0.0, 0.0}, {0.05, 2.095}}));
     model.add_rigid_part("drum", drum);
@@ -128,14 +128,14 @@ TEST(RigidPart, BadDeclarationsNameThePartAndTheNode) {
     }
     {
         ExplicitModel model(mesh);
-        model.add_hex8("finger", kRubber);
-        model.add_hex8("drum", kRubber);
+        model.add_hex8("finger", kFingerRubber);
+        model.add_hex8("drum", kFingerRubber);
         model.add_rigid_part("drum", {});
         EXPECT_NE(test::input_error([&] { ExplicitSolver s(model, quiet(1e-3)); }).find("part 'drum' is rigid"), std::string::npos);
     }
     {
         ExplicitModel model(mesh);
-        model.add_hex8("finger", kRubber);
+        model.add_hex8("finger", kFingerRubber);
         model.add_rigid_part("drum", {});
         const int shared = mesh.blocks[1].connectivity[0];
         model.prescribe_motion({shared}, RigidMotion::translation(Vec3(1, 0, 0)));

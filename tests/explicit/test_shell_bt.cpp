@@ -18,10 +18,10 @@
 #include "shell_test_support.hpp"
 
 using namespace fem;
+using namespace fem::test;
 using fem::test::quiet;
 
 namespace {
-const ElasticMaterial kSteel = ElasticMaterial::make("steel", 210e9, 0.28, 7700);
 
 // A hyperbolic paraboloid patch z = c (x^2 - y^2) over [-l/2, l/2]^2: every element warped.
 Mesh saddle(double l, double c, int n) {
@@ -64,7 +64,7 @@ TEST(ShellBtStability, MeasuredFactorMakesTheTableStepABound) {
     cases.push_back({"free triangles 1", test::split_into_triangles(rectangle_quads(0.01, 0.01, 1, 1)), false});
     cases.push_back({"free triangles 4x4", test::split_into_triangles(rectangle_quads(0.04, 0.04, 4, 4)), false});
     for (const auto& cs : cases) {
-        ShellGroup g(cs.mesh, 0, kSteel, {.thickness = 1e-3});
+        ShellGroup g(cs.mesh, 0, kShellSteel, {.thickness = 1e-3});
         const auto sys = test::dense_shell_system(cs.mesh, g);
         std::vector<bool> fixed(sys.mass.size(), false);
         const double w_free = std::sqrt(test::dense_eigenvalues(sys, fixed).maxCoeff());
@@ -113,7 +113,7 @@ TEST(ShellBtStability, StableAtNinetyPercentAndDiagnosedAbove) {
     for (int n : {1, 4}) {
         Mesh mesh = rectangle_quads(0.01 * n, 0.01 * n, n, n, ElementShape::Quad4, "plate");
         ExplicitModel model(mesh);
-        model.add_shells("plate", kSteel, {.thickness = 1e-3});
+        model.add_shells("plate", kShellSteel, {.thickness = 1e-3});
         random_velocities(model, mesh, 1e-3, 0.1, 7);
         auto* g = dynamic_cast<ShellGroup*>(model.groups()[0].get());
         ExplicitOptions o = quiet(1.0);
@@ -164,7 +164,7 @@ TEST(ShellBtStability, StableAtNinetyPercentAndDiagnosedAbove) {
 TEST(ShellBtRotation, SpinningWarpedPatchStoresNoStrainEnergy) {
     Mesh mesh = saddle(0.06, 3.0, 6);
     ExplicitModel model(mesh);
-    model.add_shells("saddle", kSteel, {.thickness = 1e-3});
+    model.add_shells("saddle", kShellSteel, {.thickness = 1e-3});
     // An axis in the patch's mid-plane, oblique to the mesh lines: a principal axis of inertia (the
     // saddle's inertia is symmetric about x and y, with I_xx = I_yy), so the free body turns about it
     // rigidly; the elements turn about their in-plane axes, bending-wise.
@@ -190,7 +190,7 @@ TEST(ShellBtParallel, SameBitsOnOneAndTwoThreads) {
     for (int threads : {1, 2}) {
         par::set_threads(threads);
         ExplicitModel model(mesh);
-        model.add_shells("plate", kSteel, {.thickness = 1e-3});
+        model.add_shells("plate", kShellSteel, {.thickness = 1e-3});
         model.fix(mesh.node_set("x0"), Dofs::all());
         random_velocities(model, mesh, 0.1, 10.0, 3);
         double dt = 1e300;
@@ -213,7 +213,7 @@ TEST(ShellBtOutput, SurfaceStressesInVtuAndPartMaximum) {
     fs::create_directories(dir);
     Mesh mesh = rectangle_quads(0.04, 0.01, 4, 1, ElementShape::Quad4, "strip");
     ExplicitModel model(mesh);
-    model.add_shells("strip", kSteel, {.thickness = 1e-3});
+    model.add_shells("strip", kShellSteel, {.thickness = 1e-3});
     model.fix(mesh.node_set("x0"), Dofs::all());
     model.add_nodal_force(mesh.node_set("x1"), Vec3(0, 0, 1.0));
     ExplicitOptions o = quiet(2e-5);
@@ -253,7 +253,7 @@ TEST(ShellBtOutput, SurfaceStressesInVtuAndPartMaximum) {
 TEST(ShellBtEnergy, SuddenCornerLoadBalancesExternalWork) {
     Mesh mesh = rectangle_quads(0.1, 0.02, 20, 4, ElementShape::Quad4, "plate");
     ExplicitModel model(mesh);
-    model.add_shells("plate", kSteel, {.thickness = 2e-3});
+    model.add_shells("plate", kShellSteel, {.thickness = 2e-3});
     model.fix(mesh.node_set("x0"), Dofs::all());
     int corner = -1;
     for (int i = 0; i < mesh.node_count(); ++i)

@@ -14,14 +14,14 @@
 #include "core/error.hpp"
 #include "element/critical_time_step.hpp"
 #include "element/shell_bt_explicit.hpp"
+#include "explicit_test_support.hpp"
 
 using namespace fem;
+using namespace fem::test;
 using namespace fem::shellbt;
 
 namespace {
-const ElasticMaterial kSteel = ElasticMaterial::make("steel", 210e9, 0.28, 7700);
 
-Mat3 rotation(double angle, const Vec3& axis) { return Eigen::AngleAxisd(angle, axis.normalized()).toRotationMatrix(); }
 
 // The distorted five-element membrane patch of MacNeal and Harder (1985): a 0.24 x 0.12 rectangle
 // with four interior nodes; nodes 0-3 the corners, 4-7 the interior ones.
@@ -70,12 +70,12 @@ TEST(ShellBtKernel, MembranePatchTestOnDistortedObliquePatchIsExact) {
     const Vec3 n = Q.col(2);
     Patch p = macneal_harder(Q, Vec3(0.3, -0.1, 0.2));
     ShellSection sec{.thickness = 2e-3};
-    const Constants c = Constants::from(kSteel, sec);
+    const Constants c = Constants::from(kShellSteel, sec);
     Mat3 h2;  // in-plane gradient (local patch axes), unsymmetric: includes a small rotation
     h2 << 1.0e-3, 0.4e-3, 0, -0.1e-3, -0.5e-3, 0, 0, 0, 0;
     const Mat3 H = Q * h2 * Q.transpose();
     const Mat3 eps = 0.5 * (H + H.transpose());
-    const Mat3 expected = plane_stress(eps, n, kSteel);
+    const Mat3 expected = plane_stress(eps, n, kShellSteel);
     std::vector<Vec3> f(p.nodes.size(), Vec3::Zero()), m(p.nodes.size(), Vec3::Zero());
     for (const auto& q : p.quads) {
         const auto X = element_nodes(p.nodes, q);
@@ -90,9 +90,9 @@ TEST(ShellBtKernel, MembranePatchTestOnDistortedObliquePatchIsExact) {
         State s;
         update_state(c, fr, du, dth, s);
         for (double hq : s.hourglass)
-            EXPECT_NEAR(hq, 0.0, 1e-12 * kSteel.youngs_modulus * sec.thickness * H.norm() * 0.24);
+            EXPECT_NEAR(hq, 0.0, 1e-12 * kShellSteel.youngs_modulus * sec.thickness * H.norm() * 0.24);
         for (double md : s.drilling)
-            EXPECT_NEAR(md, 0.0, 1e-12 * kSteel.youngs_modulus * sec.thickness * H.norm() * 0.24 * 0.24);
+            EXPECT_NEAR(md, 0.0, 1e-12 * kShellSteel.youngs_modulus * sec.thickness * H.norm() * 0.24 * 0.24);
         for (int k = 0; k < kPoints; ++k) EXPECT_LT((global_stress(fr, s, k) - expected).norm(), 1e-10 * expected.norm());
         EXPECT_NEAR(s.tau[0], 0.0, 1e-10 * expected.norm());
         EXPECT_NEAR(s.tau[1], 0.0, 1e-10 * expected.norm());
@@ -115,7 +115,7 @@ TEST(ShellBtKernel, MembranePatchTestOnDistortedObliquePatchIsExact) {
 // no transverse shear, and zero net force and moment at the interior nodes.
 TEST(ShellBtKernel, ConstantCurvaturePatchOnRectanglesIsExact) {
     const double t = 3e-3, kappa = 0.2;
-    const Constants c = Constants::from(kSteel, {.thickness = t});
+    const Constants c = Constants::from(kShellSteel, {.thickness = t});
     const int nx = 3, ny = 2;
     const double lx = 0.09, ly = 0.05;
     std::vector<Vec3> X;
@@ -139,7 +139,7 @@ TEST(ShellBtKernel, ConstantCurvaturePatchOnRectanglesIsExact) {
             // u_x = z theta_y = z kappa x: eps_xx = kappa z, positive on top.
             EXPECT_NEAR(s.sigma[2][0], s_top, 1e-10 * s_top);
             EXPECT_NEAR(s.sigma[0][0], -s_top, 1e-10 * s_top);
-            EXPECT_NEAR(s.sigma[2][1], kSteel.poissons_ratio * s_top, 1e-10 * s_top);
+            EXPECT_NEAR(s.sigma[2][1], kShellSteel.poissons_ratio * s_top, 1e-10 * s_top);
             EXPECT_NEAR(s.sigma[1][0], 0.0, 1e-10 * s_top);
             EXPECT_NEAR(s.tau[0], 0.0, 1e-10 * s_top);
             EXPECT_NEAR(s.tau[1], 0.0, 1e-10 * s_top);
@@ -165,7 +165,7 @@ TEST(ShellBtKernel, ConstantCurvaturePatchOnRectanglesIsExact) {
 // forces must turn with the element; a step-sized rigid rotation of a stress-free element gives no
 // stress at all.
 TEST(ShellBtKernel, LargeRigidRotationKeepsStressAndTurnsForces) {
-    const Constants c = Constants::from(kSteel, {.thickness = 2e-3});
+    const Constants c = Constants::from(kShellSteel, {.thickness = 2e-3});
     const std::array<Vec3, 4> X{Vec3(0, 0, 0), Vec3(0.02, 0.001, 0), Vec3(0.021, 0.017, 0.0005), Vec3(-0.002, 0.015, 0)};
     State s;
     Result r0;
@@ -253,7 +253,7 @@ TEST(ShellBtKernel, StiffnessHasOnlyRigidAndNonCommunicableZeroModes) {
     for (double r : {0.01, 0.0}) {
         ShellSection sec{.thickness = 1e-3, .hourglass_membrane = r, .hourglass_bending = r, .hourglass_transverse = r,
                          .drilling = r > 0 ? 1e-3 : 0.0};
-        const Constants c = Constants::from(kSteel, sec);
+        const Constants c = Constants::from(kShellSteel, sec);
         const auto K = linear_stiffness(c, X);
         EXPECT_LT((K - K.transpose()).norm(), 1e-12 * K.norm());
         EXPECT_EQ(zero_modes(K, 0.02), r > 0 ? 7 : 16) << "hourglass coefficient " << r;
@@ -289,7 +289,7 @@ TEST(ShellBtKernel, StiffnessHasOnlyRigidAndNonCommunicableZeroModes) {
             nodes.emplace_back(0.01 * i + 0.002 * ((i * j) % 2), 0.01 * j + 0.0015 * (((i + 2) * j) % 3 == 1), 0.0);
     for (double drilling : {1e-3, 0.0}) {
         Eigen::MatrixXd K = Eigen::MatrixXd::Zero(6 * 16, 6 * 16);
-        const Constants c = Constants::from(kSteel, {.thickness = 1e-3, .drilling = drilling});
+        const Constants c = Constants::from(kShellSteel, {.thickness = 1e-3, .drilling = drilling});
         for (int j = 0; j < 3; ++j)
             for (int i = 0; i < 3; ++i) {
                 const int a = 4 * j + i;
@@ -306,7 +306,7 @@ TEST(ShellBtKernel, StiffnessHasOnlyRigidAndNonCommunicableZeroModes) {
 // linear field, no hourglass resultant whatever the nodal motion, mass rho t A / 3 per node, the
 // Table 2-1 triangle step, and only the rigid-body modes at zero energy.
 TEST(ShellBtKernel, DegenerateTriangleIsTheConstantStrainTriangle) {
-    const Constants c = Constants::from(kSteel, {.thickness = 1e-3});
+    const Constants c = Constants::from(kShellSteel, {.thickness = 1e-3});
     const std::array<Vec3, 4> X{Vec3(0, 0, 0), Vec3(0.01, 0, 0), Vec3(0.003, 0.008, 0), Vec3(0.003, 0.008, 0)};
     const Frame f = make_frame(X);
     EXPECT_NEAR(f.area, 0.5 * 0.01 * 0.008, 1e-16);
@@ -330,11 +330,11 @@ TEST(ShellBtKernel, DegenerateTriangleIsTheConstantStrainTriangle) {
     EXPECT_NEAR(s2.sigma[1][0], c.c11 * 2e-4 - c.c12 * 1e-4, 1e-9 * c.c11 * 2e-4);
     EXPECT_NEAR(s2.sigma[1][1], c.c12 * 2e-4 - c.c11 * 1e-4, 1e-9 * c.c11 * 2e-4);
     const LumpedMass lm = lumped_mass(c, X, true);
-    for (int a = 0; a < 3; ++a) EXPECT_NEAR(lm.mass[a], kSteel.density * 1e-3 * f.area / 3, 1e-18);
+    for (int a = 0; a < 3; ++a) EXPECT_NEAR(lm.mass[a], kShellSteel.density * 1e-3 * f.area / 3, 1e-18);
     EXPECT_EQ(lm.mass[3], 0.0);
     const std::array<Vec3, 3> tri{X[0], X[1], X[2]};
-    EXPECT_DOUBLE_EQ(critical_time_step(kSteel, X, true),
-                     cfl::triangle_shell_length(tri) / plate_wave_speed(kSteel));
+    EXPECT_DOUBLE_EQ(critical_time_step(kShellSteel, X, true),
+                     cfl::triangle_shell_length(tri) / plate_wave_speed(kShellSteel));
     // Zero-energy modes of the triangle (repeated node folded in): the six rigid-body modes and, as
     // for the quadrilateral, the non-communicable rotation mode theta = (x - x_c, y - y_c) (the
     // rotational part c of the MITC3 shear field, zero at the centroid); none in a mesh (below).
@@ -411,13 +411,13 @@ TEST(ShellBtKernel, RotationalInertiaKeepsRotationsOutOfTheTimeStep) {
         {"triangle", {Vec3(0, 0, 0), Vec3(0.01, 0, 0), Vec3(0.004, 0.009, 0), Vec3(0.004, 0.009, 0)}, 1e-3, true},
     };
     for (const auto& cs : cases) {
-        const Constants c = Constants::from(kSteel, {.thickness = cs.t});
+        const Constants c = Constants::from(kShellSteel, {.thickness = cs.t});
         const LumpedMass lm = lumped_mass(c, cs.X, cs.tri);
-        const double dt = critical_time_step(kSteel, cs.X, cs.tri);
+        const double dt = critical_time_step(kShellSteel, cs.X, cs.tri);
         if (std::string(cs.name) == "thin square") {
             // Thin limit of the row bound (bending terms ~ (t/a)^2 = 1e-4): J = m a^2 / y^2 with
             // kappa G/E (y^2 + 2 y) = 4 / (1 - nu^2).
-            const double a = 0.01, m = lm.mass[0], nu = kSteel.poissons_ratio;
+            const double a = 0.01, m = lm.mass[0], nu = kShellSteel.poissons_ratio;
             const double kge = (5.0 / 6.0) / (2 * (1 + nu));
             const double y = -1 + std::sqrt(1 + 4 / ((1 - nu * nu) * kge));
             EXPECT_NEAR(lm.inertia[0] / (m * a * a), 1 / (y * y), 2e-3 / (y * y));
@@ -447,7 +447,7 @@ TEST(ShellBtKernel, RotationalInertiaKeepsRotationsOutOfTheTimeStep) {
                     "%.4f)\n",
                     cs.name, lm.inertia[0] / (lm.mass[0] * make_frame(cs.X).area), wmax * dt / 2, wrot * dt / 2);
         EXPECT_LE(wrot * dt / 2, 1.0) << cs.name;
-        EXPECT_LE(wmax * dt / 2, std::sqrt(1 + kSteel.poissons_ratio) * 1.02) << cs.name;
+        EXPECT_LE(wmax * dt / 2, std::sqrt(1 + kShellSteel.poissons_ratio) * 1.02) << cs.name;
     }
 }
 

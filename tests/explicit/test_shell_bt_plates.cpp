@@ -22,10 +22,10 @@
 #include "shell_test_support.hpp"
 
 using namespace fem;
+using namespace fem::test;
 using fem::test::quiet;
 
 namespace {
-constexpr double kPi = std::numbers::pi;
 
 struct Relaxed {
     double w = 0.0;              // the measured displacement at the end
@@ -265,9 +265,7 @@ double explicit_frequency(const Mesh& mesh, const ElasticMaterial& mat, const Sh
         q.push_back(sum);
     };
     solver.run();
-    std::vector<double> up;
-    for (std::size_t k = 1; k < q.size(); ++k)
-        if (q[k - 1] < 0 && q[k] >= 0) up.push_back(t[k - 1] + (t[k] - t[k - 1]) * (-q[k - 1]) / (q[k] - q[k - 1]));
+    const std::vector<double> up = upward_crossings(t, q);
     if (up.size() < 2) return 0.0;
     return 2 * kPi * (up.size() - 1) / (up.back() - up.front());
 }

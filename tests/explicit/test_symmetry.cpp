@@ -14,11 +14,10 @@
 #include "explicit_test_support.hpp"
 
 using namespace fem;
+using namespace fem::test;
 using fem::test::quiet;
 
 namespace {
-const ElasticMaterial kRubber = ElasticMaterial::make("rubber", 6.1e6, 0.45, 1000);
-const ElasticMaterial kSteel = ElasticMaterial::make("steel", 209e9, 0.3, 7957);
 
 // The node of `m` at X (exactly one), for comparing two meshes of one body.
 int node_at(const Mesh& m, const Vec3& X) {
@@ -38,12 +37,12 @@ TEST(SymmetryPlane, HalfBlockReproducesTheFullBlock) {
     auto o = quiet(4e-3);
     o.fixed_dt = 2e-5;
     ExplicitModel mf(full);
-    mf.add_hex8("block", kRubber);
+    mf.add_hex8("block", kFingerRubber);
     mf.set_initial_velocity(v0);
     ExplicitSolver sf(mf, o);
     sf.run();
     ExplicitModel mh(half);
-    mh.add_hex8("block", kRubber);
+    mh.add_hex8("block", kFingerRubber);
     mh.set_initial_velocity(v0);
     const std::vector<int> plane = mh.add_symmetry_plane(Vec3(-1, 0, 0), Vec3::Zero());
     EXPECT_EQ(plane.size(), 5u * 3u);
@@ -72,14 +71,14 @@ TEST(SymmetryPlane, HalfBeamKeepsTheInPlaneRotationsFixed) {
     auto o = quiet(3e-3);  // the automatic step: the same in both (the same element lengths, no measurement for beams)
     const Mesh full = line_beam2(Vec3(-L, 0, 0), Vec3(L, 0, 0), 20, "beam");
     ExplicitModel mf(full);
-    mf.add_beams("beam", kSteel, section);
+    mf.add_beams("beam", kWireSteel, section);
     mf.fix({0, 20});
     mf.add_nodal_force({10}, Vec3(0, F, 0), Curve::pulse(0.0, 1e-3));
     ExplicitSolver sf(mf, o);
     sf.run();
     const Mesh half = line_beam2(Vec3::Zero(), Vec3(L, 0, 0), 10, "beam");
     ExplicitModel mh(half);
-    mh.add_beams("beam", kSteel, section);
+    mh.add_beams("beam", kWireSteel, section);
     mh.fix(half.node_set("end"));
     const std::vector<int> plane = mh.add_symmetry_plane(Vec3::UnitX(), Vec3::Zero());
     ASSERT_EQ(plane, std::vector<int>{0});
@@ -123,7 +122,7 @@ TEST(SymmetryPlane, SkewNormalsAndEmptyPlanesAreRefused) {
 TEST(Gravity, ScaledByACurve) {
     const Mesh mesh = line_beam2(Vec3::Zero(), Vec3(0.1, 0, 0), 2, "wire");
     ExplicitModel model(mesh);
-    model.add_beams("wire", kSteel, {beam::Section::circular(1e-3)});
+    model.add_beams("wire", kWireSteel, {beam::Section::circular(1e-3)});
     const double g = 9.81;
     const Curve ramp({{0, 0}, {1e-3, 1}}, "ramp");
     model.set_gravity(Vec3(0, 0, -g), ramp);

@@ -24,6 +24,7 @@
 #include "mesh/finger.hpp"
 
 namespace fem {
+using namespace fem::test;
 namespace {
 
 // Box [0,lx]x[0,ly]x[0,lz] of nx*ny*nz hexahedra, each split into 6 tetrahedra around its 0-6
@@ -77,7 +78,6 @@ double hash(const Vec3& x, double seed) {
     return 2.0 * (t - std::floor(t)) - 1.0;
 }
 
-const ElasticMaterial kRubber = ElasticMaterial::make("rubber", 2.0e6, 0.45, 1100.0);
 
 // --- element level ------------------------------------------------------------------------------
 
@@ -107,10 +107,10 @@ TEST(TetExplicit, LinearStiffnessEqualsImplicitTet10) {
     const int edges[6][2] = {{0, 1}, {1, 2}, {2, 0}, {0, 3}, {2, 3}, {1, 3}};
     for (const auto& e : edges) X.push_back(0.5 * (X[e[0]] + X[e[1]]));
     X[5] += Vec3(0.05, 0.03, -0.02);
-    const auto mat = hex8::Hex8Material::from(kRubber, 0.0, 0.0, {}, false);
+    const auto mat = hex8::Hex8Material::from(kSoftRubber, 0.0, 0.0, {}, false);
     const auto ref = tet::make_tet10_reference(X);
     const Eigen::MatrixXd K = tet::linear_stiffness(ref, mat);
-    const Eigen::MatrixXd K_ref = solid::tet10_stiffness(X, kRubber);
+    const Eigen::MatrixXd K_ref = solid::tet10_stiffness(X, kSoftRubber);
     EXPECT_LT((K - K_ref).norm(), 1e-10 * K_ref.norm());
     // Finite difference of the nonlinear forces along a random direction (central, h = 1e-7).
     Eigen::VectorXd d(30);
@@ -152,14 +152,14 @@ void patch_test(bool quadratic, bool curved) {
     if (curved)
         for (int i = 27; i < mesh.node_count(); ++i)  // the mid-edge nodes follow the 27 corner nodes
             if (!on_unit_box_boundary(mesh.nodes[i])) mesh.nodes[i] = move(mesh.nodes[i]);
-    Group g(mesh, 0, kRubber, TetGroupOptions{.bulk_viscosity = false});
+    Group g(mesh, 0, kSoftRubber, TetGroupOptions{.bulk_viscosity = false});
     NodalState s = test::state_at_rest(mesh);
     Mat3 A;
     A << 0.10, 0.03, -0.05, 0.02, -0.08, 0.04, 0.06, 0.01, 0.05;  // finite strain
     const Mat3 F = Mat3::Identity() + A;
     for (int i = 0; i < mesh.node_count(); ++i) s.x[i] = F * s.X[i];
     const GroupForceResult r = g.internal_forces(s, true);
-    const double mu = kRubber.shear_modulus(), lambda = kRubber.lame_lambda(), J = F.determinant();
+    const double mu = kSoftRubber.shear_modulus(), lambda = kSoftRubber.lame_lambda(), J = F.determinant();
     const Mat3 sigma = (mu * (F * F.transpose() - Mat3::Identity()) + lambda * std::log(J) * Mat3::Identity()) / J;
     const double W = 0.5 * mu * (F.squaredNorm() - 3.0 - 2.0 * std::log(J)) + 0.5 * lambda * std::log(J) * std::log(J);
     // An isoparametric element reproduces the linear field exactly at every integration point, curved
@@ -195,12 +195,12 @@ TEST(TetExplicit, PatchTestTet10CurvedStress) { patch_test<Tet10Group>(true, tru
 template <class Group>
 void rigid_rotation(bool quadratic) {
     Mesh mesh = box_tets(1.0, 0.5, 0.3, 2, 2, 1, quadratic);
-    Group g(mesh, 0, kRubber);
+    Group g(mesh, 0, kSoftRubber);
     NodalState s = test::state_at_rest(mesh);
     const Mat3 R = Eigen::AngleAxisd(1.3, Vec3(1, 2, 3).normalized()).toRotationMatrix();
     for (int i = 0; i < mesh.node_count(); ++i) s.x[i] = R * s.X[i] + Vec3(0.4, -0.2, 0.7);
     const GroupForceResult r = g.internal_forces(s, false);
-    const double mu = kRubber.shear_modulus();
+    const double mu = kSoftRubber.shear_modulus();
     EXPECT_LT(std::abs(r.internal_energy), 1e-12 * mu * 0.15);  // mu V: energy of a unit strain
     double fmax = 0.0;
     for (const auto& f : s.f) fmax = std::max(fmax, f.norm());
@@ -213,8 +213,8 @@ TEST(TetExplicit, RigidRotationTet10NoStrain) { rigid_rotation<Tet10Group>(true)
 
 TEST(TetExplicit, AddTetsRefusesHexParts) {
     ExplicitModel model(box_hex8(1, 1, 1, 1, 1, 1));
-    EXPECT_THROW(add_tets(model, "box", kRubber), InputError);
-    EXPECT_THROW(add_tets(model, "nope", kRubber), InputError);
+    EXPECT_THROW(add_tets(model, "box", kSoftRubber), InputError);
+    EXPECT_THROW(add_tets(model, "nope", kSoftRubber), InputError);
 }
 
 // --- stable time step ----------------------------------------------------------------------------
@@ -255,7 +255,7 @@ double global_omega_max(const Mesh& mesh, const Group& g) {
 
 // Runs the free block with a random initial velocity at a fixed step; true when it stays stable.
 bool runs_stably(const Mesh& mesh, const std::string& part, const TetGroupOptions& options, double dt, int steps,
-                 const ElasticMaterial& material = kRubber) {
+                 const ElasticMaterial& material = kSoftRubber) {
     ExplicitModel model(mesh);
     add_tets(model, part, material, options);
     model.set_initial_velocity([](const Vec3& X) -> Vec3 { return 1e-3 * Vec3(hash(X, 4), hash(X, 5), hash(X, 6)); });
@@ -283,20 +283,20 @@ bool runs_stably(const Mesh& mesh, const std::string& part, const TetGroupOption
 template <class Group>
 double stable_step(const Mesh& mesh, const std::string& part, const char* what, double min_element_ratio) {
     const TetGroupOptions options{.bulk_viscosity = false};
-    Group g(mesh, mesh.blocks_of_part(part).at(0), kRubber, options);
+    Group g(mesh, mesh.blocks_of_part(part).at(0), kSoftRubber, options);
     const double dt_true = 2.0 / global_omega_max(mesh, g);
     const ElementShape shape = g.kind() == "tet4" ? ElementShape::Tet4 : ElementShape::Tet10;
     double dt_table = std::numeric_limits<double>::infinity(), dt_element = dt_table;
     for (int e = 0; e < g.size(); ++e) {
         std::vector<Vec3> x;
         for (int a : g.connectivity(e)) x.push_back(mesh.nodes[a]);
-        const double t = cfl::critical_time_step(shape, x, kRubber);
+        const double t = cfl::critical_time_step(shape, x, kSoftRubber);
         dt_table = std::min(dt_table, t);
         dt_element = std::min(dt_element, g.element_stability_ratio(e) * t);
     }
     EXPECT_NEAR(2.0 / g.element_omega_bound(), dt_element, 1e-12 * dt_element);
     ExplicitModel model(mesh);
-    add_tets(model, part, kRubber, options);
+    add_tets(model, part, kSoftRubber, options);
     ExplicitOptions opt;
     opt.end_time = 1.0;
     const double dt_solver = ExplicitSolver(model, opt).critical_dt();
@@ -393,7 +393,7 @@ TEST(TetExplicit, MixedHexTetModelGetsTheAssembledStabilityFactor) {
     auto build = [&](ExplicitModel& m) {
         Hex8Options ho;
         ho.bulk_viscosity = false;
-        m.add_hex8("hex", kRubber, ho);
+        m.add_hex8("hex", kSoftRubber, ho);
         add_tets(m, "tet", stiff, {.bulk_viscosity = false});
         m.fix(root, Dofs::all());
     };
@@ -431,7 +431,7 @@ TEST(TetExplicit, MixedHexTetModelGetsTheAssembledStabilityFactor) {
     for (int e = 0; e < mesh.blocks[0].size(); ++e) {
         std::vector<Vec3> x;
         for (int n : mesh.blocks[0].element(e)) x.push_back(mesh.nodes[n]);
-        hex_table = std::min(hex_table, cfl::critical_time_step(ElementShape::Hex8, x, kRubber));
+        hex_table = std::min(hex_table, cfl::critical_time_step(ElementShape::Hex8, x, kSoftRubber));
     }
     for (double t : ref_model.groups()[1]->reference_time_steps()) tet_ref = std::min(tet_ref, t);
     const double expected = (2.0 / omega) / std::min(hex_table, tet_ref);
@@ -477,7 +477,7 @@ TEST(TetExplicit, MixedHexTetModelGetsTheAssembledStabilityFactor) {
 
 TEST(TetExplicit, StepFollowsDeformationAndStiffnessDamping) {
     const Mesh mesh = box_tets(0.02, 0.02, 0.01, 2, 2, 1, true);
-    Tet10Group g(mesh, 0, kRubber, {.bulk_viscosity = false});
+    Tet10Group g(mesh, 0, kSoftRubber, {.bulk_viscosity = false});
     const double r = 0.4;  // a stability factor as the solver's measurement would set it
     NodalState s = test::state_at_rest(mesh);
     const double dt_ref = g.internal_forces(s, true).dt_min;  // the smallest element limit 2 / omega_e
@@ -489,7 +489,7 @@ TEST(TetExplicit, StepFollowsDeformationAndStiffnessDamping) {
     EXPECT_NEAR(g.internal_forces(s, true).dt_min, 0.9 * dt0, 1e-12 * dt0);
     // Stiffness damping beta: dt = (2/omega)(sqrt(1 + xi^2) - xi), xi = beta omega / 2 = beta / dt0.
     const double beta = 0.2 * dt0;
-    Tet10Group gb(mesh, 0, kRubber, {.bulk_viscosity = false, .rayleigh_beta = beta});
+    Tet10Group gb(mesh, 0, kSoftRubber, {.bulk_viscosity = false, .rayleigh_beta = beta});
     gb.set_stability_factor(r);  // applied before the damping reduction: xi from the scaled step
     NodalState sb = test::state_at_rest(mesh);
     const double xi = beta / dt0;
@@ -605,7 +605,7 @@ TEST(TetExplicit, Tet10ElementLimitOnManyShapesIsTheGroupStep) {
 TEST(TetExplicit, Tet10MassScalingGivesTheTargetStep) {
     const Mesh mesh = short_finger(2);
     ExplicitModel model(mesh);
-    add_tets(model, "finger", kRubber, {.bulk_viscosity = false});
+    add_tets(model, "finger", kSoftRubber, {.bulk_viscosity = false});
     model.set_initial_velocity([](const Vec3& X) -> Vec3 { return 1e-3 * Vec3(hash(X, 7), hash(X, 8), hash(X, 9)); });
     ExplicitOptions opt;
     opt.print_summary = false;
@@ -632,7 +632,7 @@ TEST(TetExplicit, ViscousPowerIsForceTimesVelocity) {
     const int edges[6][2] = {{0, 1}, {1, 2}, {2, 0}, {0, 3}, {2, 3}, {1, 3}};
     for (const auto& e : edges) X.push_back(0.5 * (X[e[0]] + X[e[1]]));
     const auto ref = tet::make_tet10_reference(X);
-    const auto mat = hex8::Hex8Material::from(kRubber, 0.0, 1e-4, {}, true);
+    const auto mat = hex8::Hex8Material::from(kSoftRubber, 0.0, 1e-4, {}, true);
     std::vector<Vec3> x(10), v(10), zero(10, Vec3::Zero());
     Mat3 F;
     F << 1.05, 0.02, 0.0, -0.03, 0.97, 0.01, 0.02, 0.0, 0.99;
@@ -669,10 +669,10 @@ TEST(TetExplicit, ViolentImpactWithStrongBulkViscosityBalancesTet10) {
     const double a = 0.02, V = 10.0;
     const Mesh mesh = box_tets(a, a, a, 3, 3, 3, true);
     ExplicitModel model(mesh);
-    add_tets(model, "box", kRubber, {.bulk = {.quadratic = 4.0, .linear = 0.5}});
+    add_tets(model, "box", kSoftRubber, {.bulk = {.quadratic = 4.0, .linear = 0.5}});
     model.fix(mesh.select_nodes([](const Vec3& x) { return std::abs(x.z()) < 1e-12; }), Dofs::all());
     model.set_initial_velocity([&](const Vec3&) { return Vec3(0, 0, -V); });
-    const double c = cfl::wave_speed(ElementShape::Tet10, kRubber);
+    const double c = cfl::wave_speed(ElementShape::Tet10, kSoftRubber);
     ExplicitOptions opt;
     opt.end_time = 6 * a / c;
     opt.print_summary = false;

@@ -19,11 +19,12 @@
 #include "element/tet_explicit.hpp"
 #include "explicit/parallel.hpp"
 #include "explicit/tet_groups.hpp"
+#include "explicit_test_support.hpp"
 
 namespace fem {
+using namespace fem::test;
 namespace {
 
-const ElasticMaterial kRubber = ElasticMaterial::make("rubber", 2.0e6, 0.45, 1100.0);
 
 // A 10 mm tetrahedron near the reference one, randomly distorted; tet10 mid-edge nodes off their
 // edges' midpoints (curved edges). At the origin: the direct form takes F from the positions, which
@@ -67,7 +68,7 @@ template <int N, int Q>
 void kernel_against_direct_form() {
     std::mt19937 rng(N);
     for (double beta : {0.0, 3e-5}) {
-        const hex8::Hex8Material mat = hex8::Hex8Material::from(kRubber, 0.0, beta, {.quadratic = 1.5, .linear = 0.06}, true);
+        const hex8::Hex8Material mat = hex8::Hex8Material::from(kSoftRubber, 0.0, beta, {.quadratic = 1.5, .linear = 0.06}, true);
         for (int trial = 0; trial < 40; ++trial) {
             const auto X = random_element<N>(rng);
             const auto ref = reference_of<N, Q>(X);
@@ -115,7 +116,7 @@ TEST(TetFastKernel, Tet10EqualsTheDirectFormulation) { kernel_against_direct_for
 template <int N, int Q>
 void block_equals_one_element() {
     std::mt19937 rng(100 + N);
-    const hex8::Hex8Material mat = hex8::Hex8Material::from(kRubber, 0.0, 1e-5, {}, true);
+    const hex8::Hex8Material mat = hex8::Hex8Material::from(kSoftRubber, 0.0, 1e-5, {}, true);
     tet::TetPackedBlock<Q> block;
     alignas(hex8::kLanesAlign) hex8::Lanes u[3][N], v[3][N];
     std::vector<tet::TetKernelResult<N>> one(hex8::kLanes);
@@ -188,7 +189,7 @@ void group_against_element_by_element(ElementShape shape) {
     std::uniform_real_distribution<double> g(-1.0, 1.0);
     for (auto& x : mesh.nodes) x += 0.001 * Vec3(g(rng), g(rng), g(rng));
     const TetGroupOptions opt{.rayleigh_beta = 1e-6};
-    Group group(mesh, 0, kRubber, opt);
+    Group group(mesh, 0, kSoftRubber, opt);
     ASSERT_GT(group.size(), 1024);
     std::vector<double> scale(group.size());
     for (auto& f : scale) f = 1.0 + (g(rng) + 1.0);
@@ -244,7 +245,7 @@ void group_against_element_by_element(ElementShape shape) {
         EXPECT_NEAR(vm1[e], r.von_mises, 1e-12 * r.von_mises) << e;
         // The element's own limit carried by its Table 2-1 step (tet_groups.hpp), mass scaling, the factor.
         double dt = 0.7 * group.element_stability_ratio(e) *
-                    cfl::critical_time_step(shape, x, kRubber, r.volumetric_strain_rate, opt.bulk) * std::sqrt(scale[e]);
+                    cfl::critical_time_step(shape, x, kSoftRubber, r.volumetric_strain_rate, opt.bulk) * std::sqrt(scale[e]);
         const double xi = opt.rayleigh_beta / dt;
         dt *= std::sqrt(1.0 + xi * xi) - xi;
         if (dt < dt_min) {

@@ -15,7 +15,7 @@ using fem::units::mm;
 
 namespace {
 
-constexpr double pi = std::numbers::pi;
+using std::numbers::pi;
 const ElasticMaterial kRubber = fem::finger::rubber();
 
 // The smallest element critical time step of the mesh (Table 2-1, no bulk-viscosity term: the

@@ -16,12 +16,13 @@
 #include "io/hdf5.hpp"
 #include "modal/deck_run.hpp"
 #include "modal/modal.hpp"
+#include "../test_materials.hpp"
 
 using namespace fem;
+using fem::test::kSteel;
 
 namespace {
 
-const ElasticMaterial kSteel = ElasticMaterial::make("steel", 210e9, 0.3, 7800.0);
 constexpr double kL = 1.0, kH = 0.05;  // cantilever length and square section side (L/h = 20)
 
 // Euler-Bernoulli cantilever: f_n = (beta_n L)^2 / (2 pi L^2) sqrt(E I / (rho A)).

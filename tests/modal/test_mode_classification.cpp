@@ -19,7 +19,7 @@ using std::numbers::pi;
 
 namespace {
 
-constexpr double kA = 0.012, kB = 0.00845, kL = 0.2032;
+constexpr double kFingerA = 0.012, kFingerB = 0.00845, kFingerL = 0.2032;
 
 // Nodes of an elliptic cylinder: rings of points on scaled ellipses, irregular in z (a random
 // jitter, as tet10 nodes are) so that slices do not line up with node layers.
@@ -29,12 +29,12 @@ std::vector<Vec3> cylinder_nodes() {
     std::uniform_real_distribution<double> jitter(-0.4, 0.4);
     const int layers = 80;
     for (int k = 0; k <= layers; ++k) {
-        x.emplace_back(0, 0, kL * k / layers);
+        x.emplace_back(0, 0, kFingerL * k / layers);
         for (int r = 1; r <= 3; ++r)
             for (int j = 0; j < 8 * r; ++j) {
                 const double phi = 2 * pi * j / (8 * r), s = r / 3.0;
-                double z = kL * (k + (k > 0 && k < layers ? jitter(rng) : 0.0)) / layers;
-                x.emplace_back(s * kA * std::cos(phi), s * kB * std::sin(phi), z);
+                double z = kFingerL * (k + (k > 0 && k < layers ? jitter(rng) : 0.0)) / layers;
+                x.emplace_back(s * kFingerA * std::cos(phi), s * kFingerB * std::sin(phi), z);
             }
     }
     return x;
@@ -42,11 +42,11 @@ std::vector<Vec3> cylinder_nodes() {
 
 // First cantilever bending shape (Euler-Bernoulli), lambda = 1.8751.
 double bend(double z) {
-    const double l = 1.8751 / kL, s = (std::cosh(l * kL) + std::cos(l * kL)) / (std::sinh(l * kL) + std::sin(l * kL));
+    const double l = 1.8751 / kFingerL, s = (std::cosh(l * kFingerL) + std::cos(l * kFingerL)) / (std::sinh(l * kFingerL) + std::sin(l * kFingerL));
     return std::cosh(l * z) - std::cos(l * z) - s * (std::sinh(l * z) - std::sin(l * z));
 }
 double bend_slope(double z) {
-    const double l = 1.8751 / kL, s = (std::cosh(l * kL) + std::cos(l * kL)) / (std::sinh(l * kL) + std::sin(l * kL));
+    const double l = 1.8751 / kFingerL, s = (std::cosh(l * kFingerL) + std::cos(l * kFingerL)) / (std::sinh(l * kFingerL) + std::sin(l * kFingerL));
     return l * (std::sinh(l * z) + std::sin(l * z) - s * (std::cosh(l * z) - std::cos(l * z)));
 }
 
@@ -66,8 +66,8 @@ std::vector<Vec3> bending_x(const std::vector<Vec3>& x) {
 std::vector<Vec3> torsion(const std::vector<Vec3>& x) {
     std::vector<Vec3> u;
     for (const Vec3& p : x) {
-        const double th = std::sin(pi * p.z() / (2 * kL)), dth = pi / (2 * kL) * std::cos(pi * p.z() / (2 * kL));
-        u.emplace_back(-th * p.y(), th * p.x(), dth * (kB * kB - kA * kA) / (kA * kA + kB * kB) * p.x() * p.y());
+        const double th = std::sin(pi * p.z() / (2 * kFingerL)), dth = pi / (2 * kFingerL) * std::cos(pi * p.z() / (2 * kFingerL));
+        u.emplace_back(-th * p.y(), th * p.x(), dth * (kFingerB * kFingerB - kFingerA * kFingerA) / (kFingerA * kFingerA + kFingerB * kFingerB) * p.x() * p.y());
     }
     return u;
 }
@@ -75,7 +75,7 @@ std::vector<Vec3> torsion(const std::vector<Vec3>& x) {
 std::vector<Vec3> elongation(const std::vector<Vec3>& x) {
     std::vector<Vec3> u;
     for (const Vec3& p : x) {
-        const double w = std::sin(pi * p.z() / (2 * kL)), dw = pi / (2 * kL) * std::cos(pi * p.z() / (2 * kL));
+        const double w = std::sin(pi * p.z() / (2 * kFingerL)), dw = pi / (2 * kFingerL) * std::cos(pi * p.z() / (2 * kFingerL));
         u.emplace_back(-0.49 * dw * p.x(), -0.49 * dw * p.y(), w);
     }
     return u;

@@ -16,7 +16,7 @@ using std::numbers::pi;
 namespace {
 // nu = 0 in the beam comparisons, so that the strip bends like a beam (no anticlastic stiffening).
 const ElasticMaterial kBeamSteel = ElasticMaterial::make("steel, nu 0", 210e9, 0.0, 7700);
-const ElasticMaterial kSteel = ElasticMaterial::make("steel", 210e9, 0.3, 7700);
+const ElasticMaterial kPlateSteel = ElasticMaterial::make("steel", 210e9, 0.3, 7700);
 
 // Cantilever strip L x b, nx x ny elements, clamped at x = 0. Optional distortion moves the interior
 // node columns alternately by +-d (trapezoids) to test a distorted mesh.
@@ -88,11 +88,11 @@ TEST(Mitc4Convergence, SimplySupportedSquarePlateFirstFrequency) {
     // Kirchhoff: omega_11 = 2 pi^2 / a^2 sqrt(D / (rho t)), D = E t^3 / (12 (1 - nu^2)); a/t = 100 so
     // the Mindlin (shear, rotary inertia) correction is below 0.1 %.
     const double a = 1.0, t = 0.01;
-    const double D = kSteel.youngs_modulus * t * t * t / (12 * (1 - 0.09));
-    const double omega_exact = 2 * pi * pi / (a * a) * std::sqrt(D / (kSteel.density * t));
+    const double D = kPlateSteel.youngs_modulus * t * t * t / (12 * (1 - 0.09));
+    const double omega_exact = 2 * pi * pi / (a * a) * std::sqrt(D / (kPlateSteel.density * t));
     for (bool lumped : {false, true}) {
         auto m = grid(a, a, 12, 12);
-        m.assemble(t, kSteel, lumped);
+        m.assemble(t, kPlateSteel, lumped);
         std::vector<bool> fixed(m.dofs(), false);
         for (int k = 0; k < static_cast<int>(m.nodes.size()); ++k) {
             const Vec3& x = m.nodes[k];

@@ -6,12 +6,13 @@
 
 #include "core/error.hpp"
 #include "element/shell_mitc4.hpp"
+#include "../test_materials.hpp"
 
 using namespace fem;
+using fem::test::kShellSteel;
 using fem::shell::Mat24;
 
 namespace {
-const ElasticMaterial kSteel = ElasticMaterial::make("steel", 210e9, 0.28, 7700);
 
 // A distorted and warped element (the four corners are not coplanar).
 const std::array<Vec3, 4> kWarped = {Vec3(0, 0, 0), Vec3(2.0, 0.1, 0.05), Vec3(2.2, 1.7, -0.08), Vec3(-0.1, 1.5, 0.1)};
@@ -32,7 +33,7 @@ Eigen::Matrix<double, 24, 6> rigid_modes(const std::array<Vec3, 4>& x) {
 }  // namespace
 
 TEST(Mitc4, StiffnessIsSymmetricAndPositiveSemiDefinite) {
-    const auto m = shell::mitc4_matrices(kWarped, 0.05, kSteel);
+    const auto m = shell::mitc4_matrices(kWarped, 0.05, kShellSteel);
     EXPECT_LT((m.stiffness - m.stiffness.transpose()).norm(), 1e-14 * m.stiffness.norm());
     Eigen::SelfAdjointEigenSolver<Mat24> eig(m.stiffness);
     EXPECT_GT(eig.eigenvalues().minCoeff(), -1e-10 * eig.eigenvalues().maxCoeff());
@@ -40,7 +41,7 @@ TEST(Mitc4, StiffnessIsSymmetricAndPositiveSemiDefinite) {
 
 TEST(Mitc4, SixRigidBodyModesHaveZeroEnergyAndNoMore) {
     for (double t : {0.2, 0.05, 0.001}) {
-        const auto m = shell::mitc4_matrices(kWarped, t, kSteel);
+        const auto m = shell::mitc4_matrices(kWarped, t, kShellSteel);
         const auto R = rigid_modes(kWarped);
         // K R = 0: every rigid motion is stress free (including the drilling penalty).
         EXPECT_LT((m.stiffness * R).norm(), 1e-10 * m.stiffness.norm() * R.norm()) << "t = " << t;
@@ -54,7 +55,7 @@ TEST(Mitc4, SixRigidBodyModesHaveZeroEnergyAndNoMore) {
 
 TEST(Mitc4, FlatElementHasExactlySixZeroModesToo) {
     const std::array<Vec3, 4> flat = {Vec3(0, 0, 0), Vec3(1.0, 0.2, 0), Vec3(1.3, 1.1, 0), Vec3(0.1, 0.8, 0)};
-    const auto m = shell::mitc4_matrices(flat, 0.01, kSteel);
+    const auto m = shell::mitc4_matrices(flat, 0.01, kShellSteel);
     Eigen::SelfAdjointEigenSolver<Mat24> eig(m.stiffness);
     const double top = eig.eigenvalues()[23];
     EXPECT_LT(std::abs(eig.eigenvalues()[5]), 1e-12 * top);
@@ -66,8 +67,8 @@ TEST(Mitc4, MatricesRotateWithTheElement) {
     const Mat3 Q = Eigen::AngleAxisd(0.7, Vec3(1, 2, 3).normalized()).toRotationMatrix();
     std::array<Vec3, 4> xr;
     for (int k = 0; k < 4; ++k) xr[k] = Q * kWarped[k] + Vec3(5, -2, 1);
-    const auto a = shell::mitc4_matrices(kWarped, 0.05, kSteel);
-    const auto b = shell::mitc4_matrices(xr, 0.05, kSteel);
+    const auto a = shell::mitc4_matrices(kWarped, 0.05, kShellSteel);
+    const auto b = shell::mitc4_matrices(xr, 0.05, kShellSteel);
     Mat24 T = Mat24::Zero();
     for (int i = 0; i < 8; ++i) T.block<3, 3>(3 * i, 3 * i) = Q;
     EXPECT_LT((b.stiffness - T * a.stiffness * T.transpose()).norm(), 1e-10 * a.stiffness.norm());
@@ -78,10 +79,10 @@ TEST(Mitc4, MatricesRotateWithTheElement) {
 TEST(Mitc4, MassAndRotaryInertiaOfARectangle) {
     // 0.3 x 0.2 rectangle centred at the origin, t = 0.01: mass rho t A, inertia about x of the rigid
     // rotation rho t (A b^2/12 + A t^2/12) (the second term is the rotary inertia rho t^3/12 A).
-    const double a = 0.3, b = 0.2, t = 0.01, rho = kSteel.density, A = a * b;
+    const double a = 0.3, b = 0.2, t = 0.01, rho = kShellSteel.density, A = a * b;
     const std::array<Vec3, 4> x = {Vec3(-a / 2, -b / 2, 0), Vec3(a / 2, -b / 2, 0), Vec3(a / 2, b / 2, 0),
                                    Vec3(-a / 2, b / 2, 0)};
-    const auto m = shell::mitc4_matrices(x, t, kSteel);
+    const auto m = shell::mitc4_matrices(x, t, kShellSteel);
     EXPECT_NEAR(m.area, A, 1e-15);
     const auto R = rigid_modes(x);
     for (const Mat24* M : {&m.consistent_mass, &m.lumped_mass}) {
@@ -100,14 +101,14 @@ TEST(Mitc4, MassAndRotaryInertiaOfARectangle) {
 }
 
 TEST(Mitc4, BadInputNamesTheProblem) {
-    EXPECT_THROW(shell::mitc4_matrices(kWarped, 0.0, kSteel), InputError);
-    EXPECT_THROW(shell::mitc4_matrices(kWarped, -1.0, kSteel), InputError);
+    EXPECT_THROW(shell::mitc4_matrices(kWarped, 0.0, kShellSteel), InputError);
+    EXPECT_THROW(shell::mitc4_matrices(kWarped, -1.0, kShellSteel), InputError);
     const std::array<Vec3, 4> repeated = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)};
-    EXPECT_THROW(shell::mitc4_matrices(repeated, 0.01, kSteel), InputError);
+    EXPECT_THROW(shell::mitc4_matrices(repeated, 0.01, kShellSteel), InputError);
     // Clockwise in one corner only: a non-convex (arrow-head) quadrilateral.
     const std::array<Vec3, 4> arrow = {Vec3(0, 0, 0), Vec3(2, 0, 0), Vec3(0.5, 0.5, 0), Vec3(0, 2, 0)};
     try {
-        shell::mitc4_matrices(arrow, 0.01, kSteel);
+        shell::mitc4_matrices(arrow, 0.01, kShellSteel);
         FAIL() << "a non-convex element was accepted";
     } catch (const InputError& e) {
         EXPECT_NE(std::string(e.what()).find("MITC4"), std::string::npos);

@@ -11,15 +11,16 @@
 #include "mesh/mesh.hpp"
 #include "modal/modal.hpp"
 #include "shell_test_model.hpp"
+#include "../test_materials.hpp"
 
 using namespace fem;
+using fem::test::kShellSteel;
 
 namespace {
-const ElasticMaterial kSteel = ElasticMaterial::make("steel", 210e9, 0.28, 7700);
 
 ElementKernel mitc4_kernel(double t, bool lumped = false) {
     return [t, lumped](std::span<const Vec3> x, int) {
-        const auto s = shell::mitc4_matrices({x[0], x[1], x[2], x[3]}, t, kSteel);
+        const auto s = shell::mitc4_matrices({x[0], x[1], x[2], x[3]}, t, kShellSteel);
         return ElementMatrices{s.stiffness, lumped ? s.lumped_mass : s.consistent_mass};
     };
 }
@@ -58,7 +59,7 @@ TEST(Mitc4Modal, SparseAssemblyMatchesTheDenseOne) {
     const auto r = modal::solve_modes(model.assemble(), {.modes = 4});
 
     auto dense = shelltest::grid(L, b, 20, 2);
-    dense.assemble(t, kSteel);
+    dense.assemble(t, kShellSteel);
     std::vector<bool> fixed(dense.dofs(), false);
     for (int k = 0; k < static_cast<int>(dense.nodes.size()); ++k)
         if (dense.nodes[k].x() < 1e-12)
