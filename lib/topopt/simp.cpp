@@ -240,13 +240,38 @@ double compliance_and_gradient(const Model& model, StiffnessSolver& solver, cons
     return c;
 }
 
-double HeavisideProjection::operator()(double t) const {
-    return (std::tanh(beta * eta) + std::tanh(beta * (t - eta))) / (std::tanh(beta * eta) + std::tanh(beta * (1 - eta)));
+// The step and its slope share two constants, a = tanh(beta eta) and the denominator
+// d = a + tanh(beta (1 - eta)); the scalar and vector forms evaluate the same expressions.
+namespace {
+struct StepConstants {
+    double a, d;
+    explicit StepConstants(const HeavisideProjection& H)
+        : a(std::tanh(H.beta * H.eta)), d(std::tanh(H.beta * H.eta) + std::tanh(H.beta * (1 - H.eta))) {}
+};
+double step_value(const HeavisideProjection& H, const StepConstants& k, double t) {
+    return (k.a + std::tanh(H.beta * (t - H.eta))) / k.d;
+}
+double step_slope(const HeavisideProjection& H, const StepConstants& k, double t) {
+    const double th = std::tanh(H.beta * (t - H.eta));
+    return H.beta * (1 - th * th) / k.d;
+}
+}  // namespace
+
+double HeavisideProjection::operator()(double t) const { return step_value(*this, StepConstants(*this), t); }
+double HeavisideProjection::slope(double t) const { return step_slope(*this, StepConstants(*this), t); }
+
+Eigen::VectorXd HeavisideProjection::operator()(const Eigen::VectorXd& t) const {
+    const StepConstants k(*this);
+    Eigen::VectorXd h(t.size());
+    for (Eigen::Index i = 0; i < t.size(); ++i) h(i) = step_value(*this, k, t(i));
+    return h;
 }
 
-double HeavisideProjection::slope(double t) const {
-    const double th = std::tanh(beta * (t - eta));
-    return beta * (1 - th * th) / (std::tanh(beta * eta) + std::tanh(beta * (1 - eta)));
+Eigen::VectorXd HeavisideProjection::slope(const Eigen::VectorXd& t) const {
+    const StepConstants k(*this);
+    Eigen::VectorXd s(t.size());
+    for (Eigen::Index i = 0; i < t.size(); ++i) s(i) = step_slope(*this, k, t(i));
+    return s;
 }
 
 void apply_regions(const Model& model, Eigen::VectorXd& rho, double void_density) {
@@ -281,7 +306,6 @@ Result optimize(const Model& model, const Settings& s) {
 
     HeavisideProjection project{1.0, 0.5};  // beta grows by continuation
     double& beta = project.beta;
-    auto project_slope = [&](double t) { return project.slope(t); };
 
     Eigen::VectorXd x = Eigen::VectorXd::Constant(ne, s.initial_density > 0 ? s.initial_density : s.volume_fraction);
     apply_regions(model, x, x_min);
@@ -290,7 +314,7 @@ Result optimize(const Model& model, const Settings& s) {
         Eigen::VectorXd rho = density_filter ? filter->densities(design) : design;
         if (projected) {
             filtered = rho;
-            for (int e = 0; e < ne; ++e) rho(e) = project(rho(e));
+            rho = project(filtered);
         }
         apply_regions(model, rho, x_min);
         return rho;
@@ -316,7 +340,7 @@ Result optimize(const Model& model, const Settings& s) {
         r.solver_iterations += solver.last_iterations();
         auto t = Clock::now();
         if (projected) {  // chain rule through the projection, then the filter
-            const Eigen::VectorXd slope = filtered.unaryExpr(project_slope);
+            const Eigen::VectorXd slope = project.slope(filtered);
             dc = filter->backward(dc.cwiseProduct(slope));
             dv = filter->backward(v_design.cwiseProduct(slope));
         } else if (density_filter) {

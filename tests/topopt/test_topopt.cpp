@@ -252,6 +252,20 @@ TEST(HeavisideProjection, StepPropertiesAndSlope) {
     EXPECT_LT(sharp_step(0.4), 1e-3);  // sharp: grey 0.4 becomes void
 }
 
+TEST(HeavisideProjection, VectorFormsEqualTheScalarOnesBitForBit) {
+    // optimize() projects whole designs with the vector forms; the designs must not depend on which.
+    Eigen::VectorXd t(7);
+    t << 0.0, 0.1, 0.4999, 0.5, 0.52, 0.9, 1.0;
+    for (double beta : {1.0, 2.0, 32.0}) {
+        const HeavisideProjection H{beta, 0.5};
+        const Eigen::VectorXd h = H(t), s = H.slope(t);
+        for (Eigen::Index i = 0; i < t.size(); ++i) {
+            EXPECT_EQ(h(i), H(t(i))) << "beta " << beta << " t " << t(i);
+            EXPECT_EQ(s(i), H.slope(t(i))) << "beta " << beta << " t " << t(i);
+        }
+    }
+}
+
 TEST(Simp, HeavisideProjectionGivesABlackAndWhiteDesign) {
     // The MBB half-beam (60 x 20): the density filter alone leaves grey transition layers; with the
     // projection and continuation to beta = 32 few elements stay grey, at the same volume.
