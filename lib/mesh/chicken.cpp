@@ -373,7 +373,8 @@ MassProperties mass_properties(const Chicken& c, bool half) {
 
 double volume(const Chicken& c, bool half) { return mass_properties(c, half).volume; }
 
-double density_for_mass(const Chicken& c) { return c.mass / volume(c, false); }
+double density_for_mass(const Chicken& c) { return density_for_mass(c, volume(c, false)); }
+double density_for_mass(const Chicken& c, double full_volume) { return c.mass / full_volume; }
 
 ElasticMaterial material(double density) { return ElasticMaterial::make("chicken", 6.1e6, 0.49, density); }
 

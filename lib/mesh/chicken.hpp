@@ -166,6 +166,9 @@ MassProperties mass_properties(const Chicken& c, bool half);
 MassProperties limb_mass_properties(const Chicken& c, int limb);
 /// The density that gives the bird its mass: mass / full volume (the same for the half model).
 double density_for_mass(const Chicken& c);
+/// The same with the full volume already computed (mass_properties(c, false).volume): no second
+/// OpenCASCADE integration.
+double density_for_mass(const Chicken& c, double full_volume);
 /// The bird's rubber (Sec 5.1 assumption 3: "similar to rubber"; Tables 5-2, 5-5, 5-7: E 6.1 MPa,
 /// nu 0.49) with the given density.
 ElasticMaterial material(double density);

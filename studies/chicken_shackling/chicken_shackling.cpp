@@ -894,9 +894,7 @@ void run(check::Study& study) {
     // ---- Step 4, set-up: the shackle model's mesh (Gmsh, on this thread); its two runs go first on
     // Step 2's workers (below), the rotating one being the longest job of the study. ------------------
     const ShackleInput shackle_input(birdB);
-    // chicken::density_for_mass(birdB), which is birdB.mass / (Step 1's propsB).volume: the same
-    // OpenCASCADE computation, not repeated.
-    const double shackle_density = birdB.mass / propsB.volume;
+    const double shackle_density = chicken::density_for_mass(birdB, propsB.volume);  // Step 1's volume
     ShackleRun shackle_runs[2];  // rotating, inverting
     std::vector<std::function<void()>> shackle_jobs;
     for (const bool rotating : {true, false})
