@@ -127,12 +127,12 @@ Part read_part(const TomlTable& t, const std::map<std::string, ElasticMaterial>&
     p.line = line_of(t);
     p.name = t.string("name");
     p.mesh = t.choice("mesh", {"box", "finger", "ellipsoid", "gmsh", "deck"});
-    if (hand_case && p.mesh != "ellipsoid")
-        t.fail("mesh", fmt::format("a case with [hand] takes ellipsoid objects as its deformable parts (the fingers are "
-                                   "the hand's), got '{}'",
-                                   p.mesh));
+    if (hand_case && p.mesh == "finger")
+        t.fail("mesh", "a case with [hand] has its fingers in [hand]; its [[part]]s are the objects it grasps (ellipsoid, "
+                       "box, gmsh or deck), got 'finger'");
     std::vector<std::string> keys{"name", "mesh", "material", "alpha", "initial_velocity"};
     if (p.mesh != "ellipsoid") keys.insert(keys.end(), {"offset", "hourglass_qm"});
+    if (hand_case && p.mesh != "ellipsoid") keys.push_back("symmetry_set");
     if (p.mesh == "box") keys.insert(keys.end(), {"size", "origin", "elements", "element"});
     if (p.mesh == "finger") keys.insert(keys.end(), {"table_3_2_case", "table_4_1_finger"});
     if (p.mesh == "ellipsoid")
@@ -146,6 +146,7 @@ Part read_part(const TomlTable& t, const std::map<std::string, ElasticMaterial>&
     if (p.mesh != "ellipsoid") {
         p.offset = vec3_or(t, "offset", Vec3::Zero());
         p.hourglass_qm = t.real_or("hourglass_qm", 0.1, Range::non_negative());
+        if (hand_case) p.symmetry_set = t.string_or("symmetry_set", "");
     }
     if (p.mesh == "box") {
         p.size = vec3(t, "size", Range::positive());

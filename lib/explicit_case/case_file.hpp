@@ -70,6 +70,9 @@ struct Part {
     // gmsh / deck: every solid element of the file is this part
     std::filesystem::path file;
     Vec3 offset = Vec3::Zero();    // moves the mesh (box, finger, gmsh, deck)
+    /// A hand case's box, gmsh or deck object cut by the half model's symmetry plane: the node set
+    /// (the mesh's own name, e.g. a box's "z1") on that plane z = const (hand::MeshObject::symmetry_set).
+    std::string symmetry_set;
     // solver settings
     double alpha = 0.0;            // mass damping [1/s] (Eq 2-39, *DAMPING_PART_MASS)
     Vec3 initial_velocity = Vec3::Zero();

@@ -8,6 +8,7 @@
 #include <set>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <nlohmann/json.hpp>
 
 #include "check/run_health.hpp"
@@ -42,8 +43,9 @@ auto located(const std::string& where, F&& f) {
 }
 
 // The solid blocks of a mesh file as one part `name` (lower-dimensional blocks dropped: their nodes
-// are the solids' nodes); node sets renamed "<set>-<name>" (as HandModel names its parts' sets).
-Mesh as_part(Mesh m, const std::string& name, bool keep_shells = false) {
+// are the solids' nodes); node sets renamed "<set>-<name>" (as HandModel names its parts' sets),
+// unless rename_sets is false (a hand case's mesh object: HandModel renames them itself).
+Mesh as_part(Mesh m, const std::string& name, bool keep_shells = false, bool rename_sets = true) {
     Mesh out;
     out.nodes = std::move(m.nodes);
     for (auto& b : m.blocks)
@@ -52,11 +54,12 @@ Mesh as_part(Mesh m, const std::string& name, bool keep_shells = false) {
             out.blocks.push_back(std::move(b));
         }
     if (out.blocks.empty()) throw InputError("the mesh has no " + std::string(keep_shells ? "solid or shell" : "solid") + " elements");
-    for (auto& [set, nodes] : m.node_sets) out.node_sets[set + "-" + name] = std::move(nodes);  // as HandModel names them
+    for (auto& [set, nodes] : m.node_sets) out.node_sets[rename_sets ? set + "-" + name : set] = std::move(nodes);
     return out;
 }
 
-Mesh part_mesh(const Part& p) {
+// The mesh of a [[part]] (its generator or file, moved by `offset`), as part p.name.
+Mesh part_mesh(const Part& p, bool rename_sets = true) {
     Mesh m;
     if (p.mesh == "box") {
         m = p.element == "hex8" ? box_hex8(p.size.x(), p.size.y(), p.size.z(), p.elements[0], p.elements[1], p.elements[2], p.name)
@@ -77,14 +80,14 @@ Mesh part_mesh(const Part& p) {
     } else if (p.mesh == "ellipsoid") {
         m = hex_ellipsoid(p.ellipsoid.semi_axes, p.ellipsoid.grid, p.ellipsoid.half, p.name);
         m.translate(p.ellipsoid.centre);
-        return as_part(std::move(m), p.name);
+        return as_part(std::move(m), p.name, false, rename_sets);
     } else if (p.mesh == "gmsh") {
         m = read_gmsh(p.file);
     } else {
         m = deck::read_deck(p.file).mesh;
     }
     m.translate(p.offset);
-    return as_part(std::move(m), p.name);
+    return as_part(std::move(m), p.name, false, rename_sets);
 }
 
 Mesh rigid_mesh(const RigidPart& r) {
@@ -109,7 +112,30 @@ Mesh rigid_mesh(const RigidPart& r) {
 hand::Scene hand_scene(const ExplicitCase& c) {
     if (!c.hand) throw InputError(c.source + ": the case has no [hand]");
     hand::Scene s = *c.hand;
-    for (const Part& p : c.parts) s.objects.push_back(p.ellipsoid);
+    for (const Part& p : c.parts) {
+        if (p.mesh == "ellipsoid") {
+            s.objects.push_back(p.ellipsoid);
+            continue;
+        }
+        // A box, Gmsh or deck object (the chicken of Ch 5 is one in C++, or a user's own object):
+        // lib/hand's MeshObject, its node sets under their own names (HandModel appends "-<part>").
+        hand::MeshObject o;
+        o.part = p.name;
+        o.mesh = located(at(c, p.line, "[[part]] '" + p.name + "'"), [&] { return part_mesh(p, false); });
+        o.material = p.material;
+        o.initial_velocity = p.initial_velocity;
+        o.alpha = p.alpha;
+        o.hourglass_qm = p.hourglass_qm;
+        o.symmetry_set = p.symmetry_set;
+        if (!o.symmetry_set.empty() && !o.mesh.node_sets.count(o.symmetry_set)) {
+            std::vector<std::string> known;
+            for (const auto& [name, nodes] : o.mesh.node_sets) known.push_back(name);
+            throw InputError(at(c, p.line, "[[part]] '" + p.name + "'") +
+                             fmt::format("symmetry_set: '{}' is not a node set of its mesh (it has: {})", o.symmetry_set,
+                                         known.empty() ? std::string("none") : fmt::format("{}", fmt::join(known, ", "))));
+        }
+        s.meshes.push_back(std::move(o));
+    }
     for (const RigidPart& r : c.rigid_parts) s.plates.push_back(r.plate);
     for (const Contact& k : c.contacts) s.contacts.push_back(k);
     if (c.gravity) {

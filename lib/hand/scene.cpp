@@ -50,7 +50,10 @@ private:
 Scene seen_from(Scene s, double t0) {
     if (t0 == 0.0) return s;
     if (!(t0 > 0.0)) throw InputError(fmt::format("hand scene: a start time must be >= 0, got {}", t0));
-    if (!s.meshes.empty()) throw InputError("hand scene: a scene with mesh objects cannot be seen from a later time (not written)");
+    for (const auto& o : s.meshes)
+        if (!o.ties.empty())
+            throw InputError(fmt::format("hand scene: mesh object '{}' is tied to a plate and cannot be seen from a later time "
+                                         "(not written)", o.part));
     for (const auto& p : s.plates)
         if (p.path) throw InputError(fmt::format("hand scene: plate '{}' moves on a path and cannot be seen from a later time (not written)", p.part));
     if (s.turn.omega.integral(t0) != 0.0)
@@ -65,6 +68,7 @@ Scene seen_from(Scene s, double t0) {
         o.centre += o.initial_velocity * t0;
         o.carried_scale = o.carried_scale.shifted(t0);
     }
+    for (auto& o : s.meshes) o.mesh.translate(o.initial_velocity * t0);
     for (auto& p : s.plates) {
         p.centre += p.direction * p.speed.integral(t0);
         p.speed = p.speed.shifted(t0);
@@ -135,6 +139,7 @@ HandModel::HandModel(const Scene& scene) : scene_(scene) {
         add_object(std::move(m), o.part, o.material);
     }
     std::set<std::string> tet_parts;
+    std::map<std::string, double> hourglass_qm;  // hexahedral mesh objects' own QM (default Hex8Options)
     for (const auto& o : scene_.meshes) {
         check_new_part(o.part);
         const Mesh& m = o.mesh;
@@ -150,6 +155,7 @@ HandModel::HandModel(const Scene& scene) : scene_(scene) {
         if (tets && hexes) throw InputError(fmt::format("hand scene: mesh object '{}' mixes tetrahedra and hexahedra", o.part));
         if (m.blocks.empty()) throw InputError(fmt::format("hand scene: mesh object '{}' has no elements", o.part));
         if (tets) tet_parts.insert(o.part);
+        else hourglass_qm[o.part] = o.hourglass_qm;
         if (!o.symmetry_set.empty()) cut_plane_z(o);  // refuses a cut that is not a plane z = const
         add_object(m, o.part, o.material);
     }
@@ -158,8 +164,13 @@ HandModel::HandModel(const Scene& scene) : scene_(scene) {
     model_ = std::make_unique<ExplicitModel>(std::move(mesh));
     const Mesh& msh = model_->mesh();
     for (const auto& [part, mat] : material) {
-        if (tet_parts.count(part)) add_tets(*model_, part, mat);
-        else model_->add_hex8(part, mat);
+        if (tet_parts.count(part)) {
+            add_tets(*model_, part, mat);
+        } else {
+            Hex8Options o;
+            if (const auto qm = hourglass_qm.find(part); qm != hourglass_qm.end()) o.hourglass_qm = qm->second;
+            model_->add_hex8(part, mat, o);
+        }
         std::set<int> nodes;
         for (int b : msh.blocks_of_part(part))
             for (int c : msh.blocks[b].connectivity) nodes.insert(c);

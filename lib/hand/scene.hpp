@@ -96,6 +96,7 @@ struct MeshObject {
     ElasticMaterial material;
     Vec3 initial_velocity = Vec3::Zero();
     double alpha = 0.0;          // mass damping [1/s]
+    double hourglass_qm = 0.1;   // hexahedral objects: QM of the stiffness hourglass control (Hex8Options)
     std::string symmetry_set;    // empty: a whole object
     std::vector<PlateTie> ties;
 };
@@ -166,10 +167,11 @@ struct Scene {
 /// [0, t0) starts from, valid while nothing has touched before t0 (a study's judged run that starts
 /// shortly before the first contact, football_sweep and ellipsoid_flip). The drum is turned by the
 /// integral of its speed to t0 (the fingers undeformed, spinning with it), objects moved by their
-/// initial velocity x t0, plates by their motion to t0, and every curve (drum speed, turn, plate
-/// speeds, carriage, gravity) shifted by t0 (Curve::shifted). InputError when the hand's turn has
-/// turned before t0 or a carried object's carriage changed before t0 (neither can be skipped), and
-/// for a scene with mesh objects or plates on a `path` (not written yet).
+/// initial velocity x t0 (mesh objects too: their nodes), plates by their motion to t0, and every
+/// curve (drum speed, turn, plate speeds, carriage, gravity) shifted by t0 (Curve::shifted).
+/// InputError when the hand's turn has turned before t0 or a carried object's carriage changed
+/// before t0 (neither can be skipped), and for mesh objects tied to a plate or plates on a `path`
+/// (not written yet: a tied object rides its plate, the chicken of Ch 5 on its perch).
 Scene seen_from(Scene scene, double t0);
 
 /// The built model. Owns the mesh's model; contact interfaces are reachable by pair name

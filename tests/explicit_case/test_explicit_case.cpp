@@ -466,6 +466,64 @@ mass = 0.125
     EXPECT_NEAR(r.summary.mass, 0.125, 1e-12);
 }
 
+// A hand case grasps any object, not only the thesis's ellipsoids: a box (hexahedra, the half model
+// cut on its face z1 = 0) and a Gmsh file become lib/hand MeshObjects. The cut face keeps u_z = 0
+// while the rest of the box moves with its initial velocity towards the plane; the Gmsh block,
+// whole, translates freely; node sets are named "<set>-<part>" as for every part.
+TEST(ExplicitCase, HandCaseTakesBoxAndGmshObjects) {
+    const std::string head = R"(
+[control]
+end_time = 2.0e-5
+threads = 1
+[[material]]
+name = "rubber"
+E = 6.1e6
+nu = 0.49
+rho = 1000.0
+[hand]
+fingers = "table-4-1"
+)";
+    const std::string cube = R"(
+[[part]]
+name = "cube"
+material = "rubber"
+mesh = "box"
+size = [0.02, 0.02, 0.02]
+origin = [1.0, 0.0, -0.02]
+elements = [2, 2, 2]
+initial_velocity = [0.0, 0.0, 0.5]
+symmetry_set = "z1"
+)";
+    const std::string block = R"(
+[[part]]
+name = "block"
+material = "rubber"
+mesh = "gmsh"
+file = "block.msh"
+offset = [-1.0, 0.0, 0.0]
+initial_velocity = [0.0, 0.0, 0.5]
+)";
+    CaseRun r(parse_case(head + cube + block, "objects.toml", kSource / "tests/bad_input/inputs/modal"), scratch("objects"));
+    const Mesh& mesh = r.model->mesh();
+    ASSERT_NE(r.model->hand_model(), nullptr);
+    EXPECT_EQ(mesh.blocks_of_part("cube").size(), 1u);
+    EXPECT_EQ(mesh.blocks_of_part("block").size(), 1u);
+    const double t = r.solver->time();
+    ASSERT_GT(t, 0.0);
+    const auto& x = r.solver->state().x;
+    for (int n : mesh.node_set("z1-cube")) EXPECT_EQ(x[n].z(), mesh.nodes[n].z()) << "cut-plane node " << n;
+    for (int n : mesh.node_set("z0-cube")) EXPECT_GT(x[n].z() - mesh.nodes[n].z(), 0.25 * 0.5 * t) << "free node " << n;
+    for (int n : mesh.node_set("root-block")) EXPECT_NEAR(x[n].z() - mesh.nodes[n].z(), 0.5 * t, 1e-3 * 0.5 * t) << "block node " << n;
+
+    // The cut plane is the mirror plane of [hand] mirror_contact; seen from a later time the objects
+    // have moved by their initial velocity.
+    const ExplicitCase mirrored = parse_case(head + "mirror_contact = true\n" + cube, "mirror.toml");
+    EXPECT_NE(CaseModel(mirrored).hand_model()->mirror_wall(), nullptr);
+    const hand::Scene later = hand::seen_from(hand_scene(mirrored), 0.1);
+    ASSERT_EQ(later.meshes.size(), 1u);
+    EXPECT_NEAR(later.meshes[0].mesh.nodes[0].z() - hand_scene(mirrored).meshes[0].mesh.nodes[0].z(), 0.05, 1e-15);
+}
+
 TEST(ExplicitCase, ReaderRefusesWithFileLineAndKey) {
     auto refused = [](const std::string& text) {
         try {
@@ -485,6 +543,25 @@ TEST(ExplicitCase, ReaderRefusesWithFileLineAndKey) {
     EXPECT_NE(refused(base + "[[boundary]]\nset = \"x0-b\"\nfix = [\"x\"]\nvelocity = [1.0, 0.0, 0.0]\n").find("give exactly one of fix"), std::string::npos);
     const std::string mirror = base + "[hand]\nfingers = \"table-4-1\"\nmaterial = \"m\"\nsymmetry = false\nmirror_contact = true\n";
     EXPECT_NE(refused(mirror).find("mirror_contact: needs symmetry = true"), std::string::npos) << refused(mirror);
+    const std::string hand = "[hand]\nfingers = \"table-4-1\"\nmaterial = \"m\"\n";
+    EXPECT_NE(refused(base + "symmetry_set = \"z1\"\n").find("part[0].symmetry_set: is not a key of a 'box' part"), std::string::npos)
+        << refused(base + "symmetry_set = \"z1\"\n");
+    // A hand object's symmetry set is looked up when the model is built (the mesh may be a file).
+    const std::string no_such_set = base + "symmetry_set = \"z9\"\n" + hand;
+    EXPECT_EQ(refused(no_such_set), "accepted");
+    const std::string built = [&] {
+        try {
+            CaseModel m(parse_case(no_such_set, "bad.toml"));
+        } catch (const InputError& e) {
+            return std::string(e.what());
+        }
+        return std::string("built");
+    }();
+    EXPECT_NE(built.find("bad.toml:8: [[part]] 'b': symmetry_set: 'z9' is not a node set of its mesh (it has: x0, x1, y0, y1, z0, z1)"),
+              std::string::npos) << built;
+    const std::string finger = "[control]\nend_time = 1.0\n[[material]]\nname = \"m\"\nE = 1e6\nnu = 0.3\nrho = 1000.0\n"
+                               "[[part]]\nname = \"f\"\nmaterial = \"m\"\nmesh = \"finger\"\ntable_3_2_case = \"A\"\n" + hand;
+    EXPECT_NE(refused(finger).find("has its fingers in [hand]"), std::string::npos) << refused(finger);
     const std::string wall = base + "[[rigid_wall]]\npoint = [0.0, 0.0, 0.0]\n";
     EXPECT_NE(refused(wall + "normal = [0.0, 0.0, 0.0]\nslave = [\"b\"]\n").find("rigid_wall[0].normal: must not be zero"),
               std::string::npos) << refused(wall + "normal = [0.0, 0.0, 0.0]\nslave = [\"b\"]\n");
