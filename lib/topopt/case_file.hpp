@@ -23,7 +23,7 @@
 //                               # min_density = 1e-3: x >= x_min with E = x^p E0 (the 99-line code)
 //   projection = "none"         # or "heaviside" (with filter = "density"): beta 1, 2, 4, ... up to
 //   projection_beta_max = 32    #   projection_beta_max, doubled every 50 iterations or on convergence
-//   move_limit = 0.2
+//   move_limit = 0.2            # OC: per iteration; with projection on the physical densities (m / H'(eta), simp.hpp)
 //   change_tolerance = 0.01
 //   oc_tolerance = 1e-12        # OC bisection: relative width of the lambda bracket (88-line code: 1e-3)
 //   max_iterations = 1000

@@ -29,6 +29,12 @@
 // projection_beta_max; the loop converges only at beta_max, on the change of the projected
 // densities (design variables where the step is flat move without changing the structure). The volume of the projected design is
 // not linear in x, so then the OC bisection projects at every step.
+// With projection the OC move limit applies to the physical densities: m is divided by the step's
+// steepest slope H'(eta) = beta / [tanh(beta eta) + tanh(beta (1 - eta))] (1.08 at beta = 1, 16 at
+// beta = 32), so that no physical density moves by more than about m per iteration. With the plain
+// limit m on x, an element near eta jumps between 0 and 1 in one iteration at beta >= 16: whole
+// members flip back and forth, the design never settles and the last bit of a factorization decides
+// which of them remain (studies/topology_cases/README.md, "Projected designs").
 //
 // K u = f is solved by one of two StiffnessSolver back-ends: a sparse Cholesky (CHOLMOD) for small
 // and unstructured meshes, or multigrid-preconditioned CG (topopt/multigrid.hpp) on structured grids
