@@ -402,7 +402,9 @@ hand::Scene grasp_scene(const GraspCase& c, const Mesh& bird, double density) {
 
 struct GraspRun {
     int case_number = 0;
-    std::vector<double> time, theta_b, tip_e_y, finger_stress, finger_force;
+    static constexpr std::array<const char*, 5> kFingers = {"A", "B", "C", "D", "E"};  // Table 4-1
+    std::vector<double> time, theta_b, finger_force;
+    std::array<std::vector<double>, 5> tip_y, stress;  // per finger: tip-node y displacement [m] (Fig 5-14), largest von Mises [Pa] (Fig 5-15)
     std::vector<Vec3> body, perch, paw;
     RunSummary summary;
     double seconds = 0.0;
@@ -434,16 +436,17 @@ GraspRun run_grasp(const GraspCase& c, const Mesh& bird, double density, double 
     hand::HandModel hm(grasp_scene(c, bird, density));
     const Mesh& mesh = hm.mesh();
     const int centre = mesh.node_set("body_center-chicken")[0], head = mesh.node_set("head-chicken")[0];
-    const int tip = hm.tip_node("E");
+    std::array<int, 5> tips{};
+    for (std::size_t f = 0; f < tips.size(); ++f) tips[f] = hm.tip_node(GraspRun::kFingers[f]);
     const auto& paws = mesh.node_set("paw-chicken");
     ExplicitOptions o;
     o.end_time = end_time;
     o.mass_scaling_dt = kGraspMassScalingDt;
     o.history_interval = 1e-3;
-    o.history_nodes = {{"body centre", centre}, {"finger E tip", tip}};
+    o.history_nodes = {{"body centre", centre}, {"finger E tip", tips[4]}};
     o.name = fmt::format("grasp case {} to {:.3f} s", c.number, end_time);
     o.print_summary = false;
-    o.progress = false;
+    o.progress = true;  // a side run of 40-50 min (core/progress.hpp: one updating line on a terminal, quiet in logs)
     o.pvd_path = out / fmt::format("grasp-case-{}.pvd", c.number), o.vtu_interval = 0.05;
     ExplicitSolver solver(hm.model(), o);
     GraspRun r;
@@ -454,10 +457,10 @@ GraspRun run_grasp(const GraspCase& c, const Mesh& bird, double density, double 
         const NodalState& s = sv.state();
         r.time.push_back(sv.time());
         r.theta_b.push_back(chicken::theta_b(s.x[head], s.x[centre]));
-        r.tip_e_y.push_back(s.x[tip].y() - s.X[tip].y());
-        double vm = 0.0;
-        for (const char* f : {"A", "B", "C", "D", "E"}) vm = std::max(vm, sv.max_von_mises(fmt::format("finger-{}", f)));
-        r.finger_stress.push_back(vm);
+        for (std::size_t f = 0; f < tips.size(); ++f) {
+            r.tip_y[f].push_back(s.x[tips[f]].y() - s.X[tips[f]].y());
+            r.stress[f].push_back(sv.max_von_mises(fmt::format("finger-{}", GraspRun::kFingers[f])));
+        }
         r.finger_force.push_back(fingers_on_bird.force_on_master().norm());
         r.body.push_back(s.x[centre]);
         r.perch.push_back(hm.plate_centre("perch", sv.time()));
@@ -472,14 +475,19 @@ GraspRun run_grasp(const GraspCase& c, const Mesh& bird, double density, double 
     return r;
 }
 
-/// The run's histories, one row per 1 ms (mm, deg, MPa, N).
+/// The run's histories, one row per 1 ms (mm, deg, MPa, N): the fingers' tip-node y displacements
+/// and largest von Mises stresses in the order A..E of Table 4-1.
 void write_grasp_dat(const std::filesystem::path& path, const GraspRun& r) {
-    std::string text = "# t [s]  body x y z [mm]  perch x y [mm]  paw x y z [mm]  theta_b [deg]  finger E tip dy [mm]  finger von Mises [MPa]  fingers on bird [N]\n";
-    for (std::size_t k = 0; k < r.time.size(); ++k)
-        text += fmt::format("{:.4f} {:.3f} {:.3f} {:.3f} {:.3f} {:.3f} {:.3f} {:.3f} {:.3f} {:.3f} {:.4f} {:.4f} {:.5g}\n", r.time[k],
-                            r.body[k].x() / mm, r.body[k].y() / mm, r.body[k].z() / mm, r.perch[k].x() / mm, r.perch[k].y() / mm,
-                            r.paw[k].x() / mm, r.paw[k].y() / mm, r.paw[k].z() / mm, r.theta_b[k] / deg, r.tip_e_y[k] / mm,
-                            r.finger_stress[k] / 1e6, r.finger_force[k]);
+    std::string text = "# t [s]  body x y z [mm]  perch x y [mm]  paw x y z [mm]  theta_b [deg]  tip dy A B C D E [mm]  "
+                       "von Mises A B C D E [MPa]  fingers on bird [N]\n";
+    for (std::size_t k = 0; k < r.time.size(); ++k) {
+        text += fmt::format("{:.4f} {:.3f} {:.3f} {:.3f} {:.3f} {:.3f} {:.3f} {:.3f} {:.3f} {:.3f}", r.time[k], r.body[k].x() / mm,
+                            r.body[k].y() / mm, r.body[k].z() / mm, r.perch[k].x() / mm, r.perch[k].y() / mm, r.paw[k].x() / mm,
+                            r.paw[k].y() / mm, r.paw[k].z() / mm, r.theta_b[k] / deg);
+        for (const auto& tip : r.tip_y) text += fmt::format(" {:.4f}", tip[k] / mm);
+        for (const auto& vm : r.stress) text += fmt::format(" {:.4f}", vm[k] / 1e6);
+        text += fmt::format(" {:.5g}\n", r.finger_force[k]);
+    }
     io::write_text_file(path, text);
 }
 
@@ -1203,9 +1211,9 @@ int main(int argc, char** argv) {
                 write_grasp_dat(out.staging() / (name + ".dat"), r);
                 for (std::size_t k = 0; k < r.time.size(); k += 10)
                     fmt::print("t {:.3f}  body ({:.1f}, {:.1f}) mm  perch ({:.1f}, {:.1f}) mm  theta_b {:.2f} deg  E tip dy {:.2f} mm  "
-                               "vm {:.3f} MPa  F {:.3g} N\n",
+                               "E von Mises {:.3f} MPa  F {:.3g} N\n",
                                r.time[k], r.body[k].x() / mm, r.body[k].y() / mm, r.perch[k].x() / mm, r.perch[k].y() / mm,
-                               r.theta_b[k] / deg, r.tip_e_y[k] / mm, r.finger_stress[k] / 1e6, r.finger_force[k]);
+                               r.theta_b[k] / deg, r.tip_y[4][k] / mm, r.stress[4][k] / 1e6, r.finger_force[k]);
                 fmt::print("wall {:.1f} s\n", r.seconds);
                 out.commit();
                 fmt::print("results: {}\n", out.path().string());
