@@ -30,9 +30,10 @@
 //       build/bin/chicken_shackling --shackle rotating|inverting [end time [mass scaling step [drive ramp]]]
 //                                                  one Step 4 run; writes shackle-<case>.{dat,pvd} into
 //                                                  build/results/chicken_shackling/shackle-<case>/
-//       build/bin/chicken_shackling --grasp <case 1..5> [end time]
+//       build/bin/chicken_shackling --grasp <case 1..5> [end time] [--dump-every S] [--resume]
 //                                                  one Step 3 case of Table 5-4; writes grasp-case-<n>.{dat,pvd}
-//                                                  and its surfaces into build/results/chicken_shackling/grasp-case-<n>/
+//                                                  and its surfaces into build/results/chicken_shackling/grasp-case-<n>/;
+//                                                  restart dumps every S (0.025 s): --resume continues a killed run
 //       (--shackle and --grasp take --results DIR for another folder; check/side_run.hpp)
 // Out:  build/results/chicken_shackling/{checks.json, runs.json, table-5-2.md, *.dat, *.vtu,
 //       shackle-{rotating,inverting}.{dat,pvd} with their VTU},
@@ -50,11 +51,13 @@
 #include <cstring>
 #include <filesystem>
 #include <fmt/format.h>
+#include <fstream>
 #include <iostream>
 #include <limits>
 #include <memory>
 #include <numbers>
 #include <span>
+#include <sstream>
 #include <string>
 #include <thread>
 #include <vector>
@@ -429,30 +432,113 @@ void write_grasp_surfaces(const std::filesystem::path& prefix, const hand::HandM
     io::write_shaded_triangles(prefix.string() + "-hand.dat", hand, light, 1000.0);
 }
 
+// The record of a grasp run (<name>.dat), one row per history sample (1 ms; mm, deg, MPa, N): the
+// fingers' tip-node y displacements and largest von Mises stresses in the order A..E of Table 4-1.
+// It is written row by row as the run goes, flushed, so that a killed run leaves it beside its
+// restart dumps, and a resumed run (--resume) reads back the rows up to its dump: the finished file
+// is then the same as an uninterrupted run's (the rows are written rounded either way).
+constexpr const char* kGraspDatHeader =
+    "# t [s]  body x y z [mm]  perch x y [mm]  paw x y z [mm]  theta_b [deg]  tip dy A B C D E [mm]  "
+    "von Mises A B C D E [MPa]  fingers on bird [N]\n";
+constexpr std::size_t kGraspDatColumns = 21;
+
+std::string grasp_dat_row(const GraspRun& r, std::size_t k) {
+    std::string text = fmt::format("{:.4f} {:.3f} {:.3f} {:.3f} {:.3f} {:.3f} {:.3f} {:.3f} {:.3f} {:.3f}", r.time[k], r.body[k].x() / mm,
+                                   r.body[k].y() / mm, r.body[k].z() / mm, r.perch[k].x() / mm, r.perch[k].y() / mm, r.paw[k].x() / mm,
+                                   r.paw[k].y() / mm, r.paw[k].z() / mm, r.theta_b[k] / deg);
+    for (const auto& tip : r.tip_y) text += fmt::format(" {:.4f}", tip[k] / mm);
+    for (const auto& vm : r.stress) text += fmt::format(" {:.4f}", vm[k] / 1e6);
+    text += fmt::format(" {:.5g}\n", r.finger_force[k]);
+    return text;
+}
+
+/// The rows of record `path` up to model time `until` (the restart dump's: the row sampled in the
+/// dump's cycle is the last one kept; 0.5 ms is half the sampling interval), back in SI units.
+/// Throws InputError when the record ends before `until` (it is not the dump's run).
+GraspRun read_grasp_dat(const std::filesystem::path& path, int case_number, double until) {
+    std::ifstream in(path);
+    if (!in) throw InputError(fmt::format("--resume: the killed run left no record '{}'", path.string()));
+    GraspRun r;
+    r.case_number = case_number;
+    for (std::string line; std::getline(in, line);) {
+        if (line.empty() || line[0] == '#') continue;
+        std::istringstream words(line);
+        std::vector<double> v;
+        for (double x; words >> x;) v.push_back(x);
+        if (v.size() != kGraspDatColumns || !words.eof()) break;  // the last line, cut by the kill
+        if (v[0] > until + 0.5e-3) break;
+        r.time.push_back(v[0]);
+        r.body.emplace_back(v[1] * mm, v[2] * mm, v[3] * mm);
+        r.perch.emplace_back(v[4] * mm, v[5] * mm, 0.0);
+        r.paw.emplace_back(v[6] * mm, v[7] * mm, v[8] * mm);
+        r.theta_b.push_back(v[9] * deg);
+        for (std::size_t f = 0; f < 5; ++f) r.tip_y[f].push_back(v[10 + f] * mm), r.stress[f].push_back(v[15 + f] * 1e6);
+        r.finger_force.push_back(v[20]);
+    }
+    if (r.time.empty() || r.time.back() < until - 0.5e-3)
+        throw InputError(fmt::format("--resume: the record '{}' ends at {:.4f} s, before the restart dump's {:.4f} s", path.string(),
+                                     r.time.empty() ? 0.0 : r.time.back(), until));
+    return r;
+}
+
+/// Removes all but the newest `keep` restart dumps of run `name` in `dir` (a dump of the grasp model
+/// is ~MB; only the newest serves a resumption).
+void prune_restart_dumps(const std::filesystem::path& dir, std::string_view name, std::size_t keep) {
+    const std::string prefix = std::string(name) + "-restart-";  // ExplicitSolver's names (safe already)
+    std::vector<std::filesystem::path> dumps;
+    for (const auto& e : std::filesystem::directory_iterator(dir))
+        if (e.path().filename().string().rfind(prefix, 0) == 0 && e.path().extension() == ".h5") dumps.push_back(e.path());
+    std::sort(dumps.begin(), dumps.end());  // zero-padded steps: sorted by name is sorted in time
+    for (std::size_t k = 0; k + keep < dumps.size(); ++k) std::filesystem::remove(dumps[k]);
+}
+
+/// How a grasp run is dumped and resumed.
+struct GraspRestart {
+    double dump_every = 0.025;  // [s] of model time (~1-2 min of CPU in contact)
+    bool resume = false;        // continue the killed run's staging folder from its newest dump
+};
+
 /// One case of Table 5-4 from 0 to end_time (Gmsh-free: the bird mesh is given). Writes into folder
-/// `out`: grasp-case-<n>.pvd with its VTU every 50 ms, and the start and end surfaces
-/// grasp-case-<n>-{start,end}-{bird,hand}.dat (write_grasp_surfaces).
-GraspRun run_grasp(const GraspCase& c, const Mesh& bird, double density, double end_time, const std::filesystem::path& out) {
+/// `out`: grasp-case-<n>.pvd with its VTU every 50 ms, the record grasp-case-<n>.dat (row by row),
+/// restart dumps every restart.dump_every (the newest two kept; at the end only the end state's), and
+/// the start and end surfaces grasp-case-<n>-{start,end}-{bird,hand}.dat (write_grasp_surfaces).
+/// restart.resume: `out` is a killed run's staging folder; the run goes on from its newest dump.
+GraspRun run_grasp(const GraspCase& c, const Mesh& bird, double density, double end_time, const std::filesystem::path& out,
+                   const GraspRestart& restart) {
     hand::HandModel hm(grasp_scene(c, bird, density));
     const Mesh& mesh = hm.mesh();
     const int centre = mesh.node_set("body_center-chicken")[0], head = mesh.node_set("head-chicken")[0];
     std::array<int, 5> tips{};
     for (std::size_t f = 0; f < tips.size(); ++f) tips[f] = hm.tip_node(GraspRun::kFingers[f]);
     const auto& paws = mesh.node_set("paw-chicken");
+    const std::string name = fmt::format("grasp-case-{}", c.number);
     ExplicitOptions o;
     o.end_time = end_time;
     o.mass_scaling_dt = kGraspMassScalingDt;
     o.history_interval = 1e-3;
     o.history_nodes = {{"body centre", centre}, {"finger E tip", tips[4]}};
-    o.name = fmt::format("grasp case {} to {:.3f} s", c.number, end_time);
+    o.name = name;  // the dumps' names: without the end time, so a killed run can be resumed to another
     o.print_summary = false;
     o.progress = true;  // a side run of 40-50 min (core/progress.hpp: one updating line on a terminal, quiet in logs)
-    o.pvd_path = out / fmt::format("grasp-case-{}.pvd", c.number), o.vtu_interval = 0.05;
+    o.pvd_path = out / (name + ".pvd"), o.vtu_interval = 0.05;
+    o.restart_dir = out, o.restart_interval = restart.dump_every, o.restart_times = {end_time};
+    if (restart.resume) o.restart_from = ExplicitSolver::latest_restart(out, name);
     ExplicitSolver solver(hm.model(), o);
+    const std::filesystem::path dat_path = out / (name + ".dat");
     GraspRun r;
     r.case_number = c.number;
+    if (restart.resume) {
+        fmt::print("resuming {} from {} (t = {:.4f} s)\n", name, o.restart_from.filename().string(), solver.time());
+        r = read_grasp_dat(dat_path, c.number, solver.time());
+    }
+    std::ofstream dat(dat_path, std::ios::trunc);
+    dat << kGraspDatHeader;
+    for (std::size_t k = 0; k < r.time.size(); ++k) dat << grasp_dat_row(r, k);
+    dat.flush();
+    if (!dat) throw InputError(fmt::format("cannot write '{}'", dat_path.string()));
     const auto& fingers_on_bird = hm.contact("fingers on chicken");
-    write_grasp_surfaces(out / fmt::format("grasp-case-{}-start", c.number), hm, mesh.nodes);
+    if (!restart.resume) write_grasp_surfaces(out / (name + "-start"), hm, mesh.nodes);
+    std::size_t dumps_seen = 0;
     solver.observer = [&](const ExplicitSolver& sv) {
         const NodalState& s = sv.state();
         r.time.push_back(sv.time());
@@ -467,28 +553,17 @@ GraspRun run_grasp(const GraspCase& c, const Mesh& bird, double density, double 
         Vec3 p = Vec3::Zero();
         for (int n : paws) p += s.x[n] / static_cast<double>(paws.size());
         r.paw.push_back(p);
+        dat << grasp_dat_row(r, r.time.size() - 1) << std::flush;
+        if (sv.restart_files().size() != dumps_seen) dumps_seen = sv.restart_files().size(), prune_restart_dumps(out, name, 2);
     };
     const auto t0 = std::chrono::steady_clock::now();
     r.summary = solver.run();
     r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    write_grasp_surfaces(out / fmt::format("grasp-case-{}-end", c.number), hm, solver.state().x);
+    dat.close();
+    if (!dat) throw InputError(fmt::format("cannot write '{}'", dat_path.string()));
+    prune_restart_dumps(out, name, 1);  // the end state's (restart_times), to go on from
+    write_grasp_surfaces(out / (name + "-end"), hm, solver.state().x);
     return r;
-}
-
-/// The run's histories, one row per 1 ms (mm, deg, MPa, N): the fingers' tip-node y displacements
-/// and largest von Mises stresses in the order A..E of Table 4-1.
-void write_grasp_dat(const std::filesystem::path& path, const GraspRun& r) {
-    std::string text = "# t [s]  body x y z [mm]  perch x y [mm]  paw x y z [mm]  theta_b [deg]  tip dy A B C D E [mm]  "
-                       "von Mises A B C D E [MPa]  fingers on bird [N]\n";
-    for (std::size_t k = 0; k < r.time.size(); ++k) {
-        text += fmt::format("{:.4f} {:.3f} {:.3f} {:.3f} {:.3f} {:.3f} {:.3f} {:.3f} {:.3f} {:.3f}", r.time[k], r.body[k].x() / mm,
-                            r.body[k].y() / mm, r.body[k].z() / mm, r.perch[k].x() / mm, r.perch[k].y() / mm, r.paw[k].x() / mm,
-                            r.paw[k].y() / mm, r.paw[k].z() / mm, r.theta_b[k] / deg);
-        for (const auto& tip : r.tip_y) text += fmt::format(" {:.4f}", tip[k] / mm);
-        for (const auto& vm : r.stress) text += fmt::format(" {:.4f}", vm[k] / 1e6);
-        text += fmt::format(" {:.5g}\n", r.finger_force[k]);
-    }
-    io::write_text_file(path, text);
 }
 
 // --- Step 4: the shackle rotating and inverting FE model (Sec 5.4.2) ----------------------------------------
@@ -1199,16 +1274,32 @@ int main(int argc, char** argv) {
                 std::cerr << "chicken_shackling --grasp: the case is 1..5 (Table 5-4) and the end time positive\n";
                 return 2;
             }
+            GraspRestart restart;
+            for (int k = 1; k < argc; ++k) {
+                if (std::strcmp(argv[k], "--resume") == 0) restart.resume = true;
+                if (std::strcmp(argv[k], "--dump-every") == 0) {
+                    const std::vector<std::string> v = operands(k);
+                    restart.dump_every = v.size() == 1 ? std::atof(v[0].c_str()) : 0.0;
+                    if (!(restart.dump_every > 0.0)) {
+                        std::cerr << "chicken_shackling --grasp: --dump-every takes one positive interval [s]\n";
+                        return 2;
+                    }
+                }
+            }
             return run_program("chicken_shackling --grasp", [&] {
                 const std::string name = fmt::format("grasp-case-{}", number);
-                io::RunFolder out(check::side_run_folder("chicken_shackling", name, args), "chicken_shackling --grasp");
+                io::RunFolder out(check::side_run_folder("chicken_shackling", name, args), "chicken_shackling --grasp",
+                                  restart.resume ? io::RunFolder::Leftovers::adopt : io::RunFolder::Leftovers::remove);
+                if (restart.resume && !out.adopted())
+                    throw InputError(fmt::format("--resume: no killed run of {} to resume in '{}' (a killed run leaves a "
+                                                 "'.run-*' folder there): run it without --resume",
+                                                 name, out.path().string()));
                 const chicken::Chicken bird = chicken::table_5_1_chicken();
                 const double density = chicken::density_for_mass(bird);
                 const Mesh mesh = grasp_bird_mesh(bird);  // a GmshSession gives the caller's threads back
                 fmt::print("grasp bird: {} nodes, {} tet10, density {:.1f} kg/m3\n", mesh.node_count(), mesh.element_count(), density);
-                const GraspRun r = run_grasp(kTable54[number - 1], mesh, density, end, out.staging());
+                const GraspRun r = run_grasp(kTable54[number - 1], mesh, density, end, out.staging(), restart);
                 fmt::print("{}\n", r.summary.text());
-                write_grasp_dat(out.staging() / (name + ".dat"), r);
                 for (std::size_t k = 0; k < r.time.size(); k += 10)
                     fmt::print("t {:.3f}  body ({:.1f}, {:.1f}) mm  perch ({:.1f}, {:.1f}) mm  theta_b {:.2f} deg  E tip dy {:.2f} mm  "
                                "E von Mises {:.3f} MPa  F {:.3g} N\n",

@@ -1,0 +1,93 @@
+#!/usr/bin/env python3
+"""A killed `chicken_shackling --grasp` run resumes where it was (issue 12: a Table 5-4 case takes
+40-60 min of one core, longer than a session's spare time), tested on the real program.
+
+Case 4 runs to 3 ms with a restart dump every 1 ms, once uninterrupted (the reference). The same
+run is started into another folder and killed with SIGKILL as soon as its first dump exists, then
+resumed with `--resume`: the record grasp-case-4.dat (written row by row, read back up to the dump),
+the VTU series, its .pvd and the end surfaces must equal the reference byte for byte, and the end
+dump must be the only dump left. `--resume` with no killed run is refused (exit 2) saying why.
+
+usage: check_resume_grasp.py CHICKEN_SHACKLING WORK_DIR
+"""
+import os
+import shutil
+import signal
+import subprocess
+import sys
+import time
+
+failures = []
+
+
+def fail(message):
+    failures.append(message)
+    print("FAIL " + message)
+
+
+def staged_dumps(folder):
+    found = []
+    if os.path.isdir(folder):
+        for d in os.listdir(folder):
+            if d.startswith(".run-") and os.path.isdir(os.path.join(folder, d)):
+                found += [f for f in os.listdir(os.path.join(folder, d)) if "-restart-" in f and f.endswith(".h5")]
+    return sorted(found)
+
+
+def read(path):
+    with open(path, "rb") as f:
+        return f.read()
+
+
+def main():
+    program, work = sys.argv[1], sys.argv[2]
+    shutil.rmtree(work, ignore_errors=True)
+    os.makedirs(work)
+    grasp = [program, "--grasp", "4", "0.003", "--dump-every", "0.001"]
+    ref, out = os.path.join(work, "reference"), os.path.join(work, "out")
+    done = subprocess.run(grasp + ["--results", ref], capture_output=True, text=True)
+    if done.returncode != 0:
+        fail("the reference run failed:\n" + done.stdout + done.stderr)
+        return
+    refused = subprocess.run(grasp + ["--results", ref, "--resume"], capture_output=True, text=True)
+    if refused.returncode != 2 or "no killed run" not in refused.stderr:
+        fail(f"--resume without a killed run: exit {refused.returncode}, {refused.stderr!r}")
+
+    run = subprocess.Popen(grasp + ["--results", out], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    while run.poll() is None and not staged_dumps(out):
+        time.sleep(0.005)
+    if run.poll() is None:
+        os.kill(run.pid, signal.SIGKILL)
+    if run.wait() != -signal.SIGKILL:
+        fail("the run ended before it could be killed after its first dump: make it longer")
+        return
+    killed_at = staged_dumps(out)
+    print(f"killed after {killed_at}")
+    resumed = subprocess.run(grasp + ["--results", out, "--resume"], capture_output=True, text=True)
+    if resumed.returncode != 0:
+        fail("the resumed run failed:\n" + resumed.stdout + resumed.stderr)
+        return
+    if "resuming grasp-case-4 from " + killed_at[-1] not in resumed.stdout:
+        fail(f"the resumed run does not say it resumed from the newest dump {killed_at[-1]}:\n" + resumed.stdout)
+    names = sorted(f for f in os.listdir(ref) if not f.startswith("."))
+    if sorted(f for f in os.listdir(out) if not f.startswith(".")) != names:
+        fail(f"the resumed run's files {sorted(os.listdir(out))} differ from the reference's {names}")
+    dumps = [f for f in names if "-restart-" in f]
+    if len(dumps) != 1:
+        fail(f"the finished run keeps {dumps}: only the end state's dump should stay")
+    compared = [f for f in names if f.endswith((".dat", ".vtu", ".pvd"))]
+    for f in compared:
+        if os.path.exists(os.path.join(out, f)) and read(os.path.join(out, f)) != read(os.path.join(ref, f)):
+            fail(f"{f} of the resumed run differs from the uninterrupted run's")
+    rows = [l for l in read(os.path.join(ref, "grasp-case-4.dat")).decode().splitlines() if not l.startswith("#")]
+    if len(rows) != 4 or len(compared) < 7:
+        fail(f"the record has {len(rows)} rows (4 expected: 0..3 ms) and {len(compared)} files were compared")
+    print(f"resumed: {len(compared)} files byte-identical to the uninterrupted run's ({len(rows)} record rows)")
+
+
+if __name__ == "__main__":
+    main()
+    if failures:
+        sys.exit(1)  # the work folder stays, to look at
+    shutil.rmtree(sys.argv[2], ignore_errors=True)
+    print("ok")
