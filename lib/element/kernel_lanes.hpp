@@ -46,6 +46,14 @@ template <class M>
 inline Lanes select(M m, Lanes a, Lanes b) {
     return m ? a : b;
 }
+// Whether any lane's mask is set.
+inline bool any(bool m) { return m; }
+template <class M>
+inline bool any(M m) {
+    bool r = false;
+    for (int l = 0; l < kLanes; ++l) r = r || m[l] != 0;
+    return r;
+}
 
 // ln(1 + x) in plain arithmetic and bit operations that vectorize (libm's log1p is a scalar call
 // per lane). The classic argument reduction and polynomial (fdlibm/FreeBSD log1p; the error bound
@@ -221,14 +229,19 @@ template <class T>
             // Table 2-1 / LS-DYNA bulk viscosity, in compression only: q = rho l (C0 l eps_kk^2 -
             // C1 c eps_kk), a pressure, with l the cube root of the current volume (LS-DYNA's choice
             // for solids) unless given.
+            // Skipped when no lane compresses: q would be selected away in every lane (sv stays
+            // +0, the same bits), and the cube root's four dependent divisions are the longest
+            // chain of the point.
             const auto compressing = trD < 0.0;
-            const T l = length > 0.0 ? T{} + length : length0 * cbrt_jacobian(J);
-            const T rho = mat.density / J;
-            // (wave_speed is set by Hex8Material::from; computed here for a hand-filled material)
-            const double c = mat.wave_speed > 0.0 ? mat.wave_speed : std::sqrt((lambda + 2.0 * mu) / mat.density);
-            const T q = rho * l * (mat.bulk.quadratic * l * trD * trD - mat.bulk.linear * c * trD);
-            const T qc = select(compressing, q, T{});
-            for (int i = 0; i < 3; ++i) sv[i][i] -= qc;
+            if (any(compressing)) {
+                const T l = length > 0.0 ? T{} + length : length0 * cbrt_jacobian(J);
+                const T rho = mat.density / J;
+                // (wave_speed is set by Hex8Material::from; computed here for a hand-filled material)
+                const double c = mat.wave_speed > 0.0 ? mat.wave_speed : std::sqrt((lambda + 2.0 * mu) / mat.density);
+                const T q = rho * l * (mat.bulk.quadratic * l * trD * trD - mat.bulk.linear * c * trD);
+                const T qc = select(compressing, q, T{});
+                for (int i = 0; i < 3; ++i) sv[i][i] -= qc;
+            }
         }
         if (beta_on) {
             // beta K v of Eq 2-39 as a viscous stress beta C : D (the tangent of the material at rest).

@@ -203,6 +203,26 @@ TetPacked<Q> pack(const Reference<N, Q>& ref) {
 template TetPacked<1> pack(const Reference<4, 1>&);
 template TetPacked<4> pack(const Reference<10, 4>&);
 
+bool straight_sided(std::span<const Vec3> X) {
+    if (X.size() != 10) return false;
+    for (int e = 0; e < 6; ++e) {
+        const Vec3& a = X[kEdge[e][0]];
+        const Vec3& b = X[kEdge[e][1]];
+        if ((X[4 + e] - 0.5 * (a + b)).norm() > kStraightTolerance * (b - a).norm()) return false;
+    }
+    return true;
+}
+
+TetPacked<1> pack_straight(const Reference<10, 4>& ref) {
+    // Point 0's J0^-1 and w det J0 stand for all four (equal to round-off on a straight element).
+    TetPacked<1> p;
+    for (int k = 0; k < 3; ++k)
+        for (int j = 0; j < 3; ++j) p.A[0][k][j] = ref.jinv[0](k, j);
+    p.weight[0] = ref.weight[0];
+    p.length0 = std::cbrt(ref.volume);
+    return p;
+}
+
 template <int Q>
 void pack_lane(const TetPacked<Q>& p, int l, TetPackedBlock<Q>& b) {
     for (int q = 0; q < Q; ++q) {
@@ -266,8 +286,10 @@ template <class T>
         for (int k = 0; k < 3; ++k) S[i][k] = w * (P[i][0] * A[k][0] + P[i][1] * A[k][1] + P[i][2] * A[k][2]);
 }
 
-template <int N, int Q, class T>
-[[gnu::always_inline]] inline void kernel(const TetPackedT<Q, T>& p, const hex8::Hex8Material& mat,
+// Q points; the packed data has one J0^-1 and weight per point (P = Q) or one for all (P = 1: a
+// straight-sided tet10, pack_straight).
+template <int N, int Q, class T, int P>
+[[gnu::always_inline]] inline void kernel(const TetPackedT<P, T>& p, const hex8::Hex8Material& mat,
                                           const T (&u)[3][N], const T (&v)[3][N], TetKernelResultT<N, T>& out,
                                           bool viscous_forces) {
     for (int i = 0; i < 3; ++i)
@@ -280,7 +302,8 @@ template <int N, int Q, class T>
     for (int i = 0; i < 3; ++i)
         for (int j = 0; j < 3; ++j) bsum[i][j] = T{};
     for (int q = 0; q < Q; ++q) {
-        const auto& A = p.A[q];
+        const int pq = P == 1 ? 0 : q;
+        const auto& A = p.A[pq];
         T G[3][3], Gd[3][3], H[3][3], Fd[3][3];
         natural_gradient<N>(q, u, G);
         natural_gradient<N>(q, v, Gd);
@@ -291,7 +314,7 @@ template <int N, int Q, class T>
             }
         lanes::MaterialPoint<T> m;
         lanes::material_point(mat, H, Fd, p.length0, 0.0, m);
-        const T w = p.weight[q];
+        const T w = p.weight[pq];
         min_j = q == 0 ? m.J : select(m.J < min_j, m.J, min_j);
         energy += w * m.W;
         const T wj = w * m.J;
@@ -353,6 +376,10 @@ void internal_force(const TetPacked<4>& p, const hex8::Hex8Material& mat, const 
                     const double (&v)[3][10], TetKernelResult<10>& out, bool viscous_forces) {
     kernel<10, 4>(p, mat, u, v, out, viscous_forces);
 }
+void internal_force(const TetPacked<1>& p, const hex8::Hex8Material& mat, const double (&u)[3][10],
+                    const double (&v)[3][10], TetKernelResult<10>& out, bool viscous_forces) {
+    kernel<10, 4>(p, mat, u, v, out, viscous_forces);
+}
 FEM_KERNEL_CLONES
 void internal_force(const TetPackedBlock<1>& p, const hex8::Hex8Material& mat, const hex8::Lanes (&u)[3][4],
                     const hex8::Lanes (&v)[3][4], TetKernelResultBlock<4>& out, bool viscous_forces) {
@@ -360,6 +387,11 @@ void internal_force(const TetPackedBlock<1>& p, const hex8::Hex8Material& mat, c
 }
 FEM_KERNEL_CLONES
 void internal_force(const TetPackedBlock<4>& p, const hex8::Hex8Material& mat, const hex8::Lanes (&u)[3][10],
+                    const hex8::Lanes (&v)[3][10], TetKernelResultBlock<10>& out, bool viscous_forces) {
+    kernel<10, 4>(p, mat, u, v, out, viscous_forces);
+}
+FEM_KERNEL_CLONES
+void internal_force(const TetPackedBlock<1>& p, const hex8::Hex8Material& mat, const hex8::Lanes (&u)[3][10],
                     const hex8::Lanes (&v)[3][10], TetKernelResultBlock<10>& out, bool viscous_forces) {
     kernel<10, 4>(p, mat, u, v, out, viscous_forces);
 }

@@ -99,6 +99,14 @@ template <int Q>
 using TetPackedBlock = TetPackedT<Q, hex8::Lanes>;
 template <int N, int Q>
 TetPacked<Q> pack(const Reference<N, Q>& ref);
+/// A straight-sided tet10 (every mid-edge node at its edge's midpoint, to `kStraightTolerance` of
+/// the edge length) has a constant reference Jacobian J0 (its geometry is the corner tetrahedron's),
+/// so its 4 points share one J0^-1 and one weight: packed as TetPacked<1> (11 instead of 41 doubles,
+/// the kernel's largest memory stream). The forces differ from pack()'s by round-off only (the four
+/// J0 computed at the points are equal to ~1e-16). Curved (Gmsh boundary) tet10s keep pack().
+inline constexpr double kStraightTolerance = 1e-12;
+bool straight_sided(std::span<const Vec3> X);
+TetPacked<1> pack_straight(const Reference<10, 4>& ref);
 /// Puts one element's data `p` into lane `lane` of a block.
 template <int Q>
 void pack_lane(const TetPacked<Q>& p, int lane, TetPackedBlock<Q>& block);
@@ -128,6 +136,11 @@ void internal_force(const TetPackedBlock<1>& p, const hex8::Hex8Material& mat, c
 void internal_force(const TetPacked<4>& p, const hex8::Hex8Material& mat, const double (&u)[3][10],
                     const double (&v)[3][10], TetKernelResult<10>& out, bool viscous_forces = false);
 void internal_force(const TetPackedBlock<4>& p, const hex8::Hex8Material& mat, const hex8::Lanes (&u)[3][10],
+                    const hex8::Lanes (&v)[3][10], TetKernelResultBlock<10>& out, bool viscous_forces = false);
+/// The straight-sided tet10 (pack_straight): the 4 points with the one packed J0^-1 and weight.
+void internal_force(const TetPacked<1>& p, const hex8::Hex8Material& mat, const double (&u)[3][10],
+                    const double (&v)[3][10], TetKernelResult<10>& out, bool viscous_forces = false);
+void internal_force(const TetPackedBlock<1>& p, const hex8::Hex8Material& mat, const hex8::Lanes (&u)[3][10],
                     const hex8::Lanes (&v)[3][10], TetKernelResultBlock<10>& out, bool viscous_forces = false);
 
 /// The corner coordinates x (nodes 0-3, for the Table 2-1 step), displacements u = x - X and

@@ -65,9 +65,39 @@ TetGroup<N, Q>::TetGroup(const Mesh& mesh, int block, const ElasticMaterial& mat
     kconn_.resize(n);
     for (int k = 0; k < n; ++k) kconn_[k] = conn_[order_[k]];
     static_assert(kChunk % hex8::kLanes == 0, "chunks must hold whole blocks of elements");
-    packed_.resize((n + hex8::kLanes - 1) / hex8::kLanes);
-    for (int k = 0; k < static_cast<int>(packed_.size()) * hex8::kLanes; ++k)
-        tet::pack_lane(tet::pack(refs_[order_[std::min(k, n - 1)]]), k % hex8::kLanes, packed_[k / hex8::kLanes]);
+    {
+        const int blocks = (n + hex8::kLanes - 1) / hex8::kLanes;
+        std::vector<char> straight(n, 0);  // kernel order
+        if constexpr (N == 10)
+            for (int k = 0; k < n; ++k) {
+                std::array<Vec3, N> Xk;
+                for (int a = 0; a < N; ++a) Xk[a] = mesh.nodes.at(kconn_[k][a]);
+                straight[k] = tet::straight_sided(Xk);
+            }
+        slot_.resize(blocks);
+        for (int kb = 0; kb < blocks; ++kb) {
+            bool all = true;
+            for (int l = 0; l < hex8::kLanes; ++l) all = all && straight[std::min(kb * hex8::kLanes + l, n - 1)];
+            if (all) {
+                slot_[kb] = -1 - static_cast<int>(straight_.size());
+                straight_.emplace_back();
+            } else {
+                slot_[kb] = static_cast<int>(packed_.size());
+                packed_.emplace_back();
+            }
+        }
+        for (int k = 0; k < blocks * hex8::kLanes; ++k) {
+            const auto& ref = refs_[order_[std::min(k, n - 1)]];
+            const int s = slot_[k / hex8::kLanes];
+            if constexpr (N == 10) {
+                if (s < 0) {
+                    tet::pack_lane(tet::pack_straight(ref), k % hex8::kLanes, straight_[-1 - s]);
+                    continue;
+                }
+            }
+            tet::pack_lane(tet::pack(ref), k % hex8::kLanes, packed_[s]);
+        }
+    }
     step_scale_.resize(n);
     for (int k = 0; k < n; ++k) step_scale_[k] = element_ratio_[order_[k]];
     von_mises_sq_.assign(n, 0.0);
@@ -167,15 +197,24 @@ GroupForceResult TetGroup<N, Q>::internal_forces(NodalState& s, bool compute_dt)
         alignas(hex8::kLanesAlign) hex8::Lanes x[3][4], u[3][N], v[3][N], dt_block;  // see hex8::Lanes
         const hex8::Lanes no_rate{};
         const auto [k0, k1] = colouring_.range(c);  // k0 is a multiple of W (kChunk is)
-        const int last_block = static_cast<int>(packed_.size()) - 1;
+        const int last_block = static_cast<int>(slot_.size()) - 1;
         for (int kb = k0; kb < k1; kb += W) {
             const int lanes = std::min(W, k1 - kb);
             {  // the block after next into the cache (the packed data is the largest stream)
-                const char* next = reinterpret_cast<const char*>(&packed_[std::min(kb / W + 2, last_block)]);
-                for (std::size_t b = 0; b < sizeof(tet::TetPackedBlock<Q>); b += 64) __builtin_prefetch(next + b);
+                const int s = slot_[std::min(kb / W + 2, last_block)];
+                const char* next = s >= 0 ? reinterpret_cast<const char*>(&packed_[s])
+                                          : reinterpret_cast<const char*>(&straight_[-1 - s]);
+                const std::size_t size = s >= 0 ? sizeof(tet::TetPackedBlock<Q>) : sizeof(tet::TetPackedBlock<1>);
+                for (std::size_t b = 0; b < size; b += 64) __builtin_prefetch(next + b);
             }
             tet::gather<N>(xs, Xs, vs, &kconn_[kb], lanes, x, u, v);  // spare lanes repeat the last element
-            tet::internal_force(packed_[kb / W], kmat_, u, v, r, book_viscous);
+            const int s = slot_[kb / W];
+            if constexpr (N == 10) {
+                if (s < 0) tet::internal_force(straight_[-1 - s], kmat_, u, v, r, book_viscous);
+                else tet::internal_force(packed_[s], kmat_, u, v, r, book_viscous);
+            } else {
+                tet::internal_force(packed_[s], kmat_, u, v, r, book_viscous);
+            }
             // Table 2-1 tetrahedron (minimum altitude of the corner tetrahedron) on the current
             // coordinates, with the bulk-viscosity Q term.
             if (compute_dt)

@@ -68,6 +68,8 @@ public:
     const ElasticMaterial& material() const { return material_; }
     const hex8::Hex8Material& kernel_material() const { return kmat_; }
     const tet::Reference<N, Q>& reference(int e) const { return refs_[e]; }
+    /// Blocks of kLanes straight-sided tet10s packed with one Jacobian each (tet::pack_straight).
+    int straight_blocks() const { return static_cast<int>(straight_.size()); }
     const std::array<int, N>& connectivity(int e) const { return conn_[e]; }
     /// Element e's lumped nodal masses (unscaled).
     const std::array<double, N>& lumped_mass(int e) const { return mass_[e]; }
@@ -103,7 +105,12 @@ private:
     std::vector<std::array<int, N>> kconn_;    // connectivity in kernel order
     // The kernel's reference data in kernel order, blocks of kLanes elements; the lanes of the last
     // block past the end repeat the last element.
+    // A tet10 block whose kLanes elements are all straight-sided (tet::pack_straight) is kept in
+    // straight_ instead (11 instead of 41 doubles per element): slot_[block] >= 0 indexes packed_,
+    // < 0 straight_ at -1 - slot_. Tet4: every block in packed_.
     std::vector<tet::TetPackedBlock<Q>> packed_;
+    std::vector<tet::TetPackedBlock<1>> straight_;
+    std::vector<int> slot_;
     std::vector<double> step_scale_;           // kernel order: element_ratio_ x sqrt(mass_scale_)
     std::vector<double> von_mises_sq_;         // kernel order (sqrt on output)
     double dt_wave_speed_ = 0.0;               // Table 2-1 dilatational wave speed

@@ -153,6 +153,71 @@ void block_equals_one_element() {
 TEST(TetFastKernel, Tet4BlockEqualsOneElementKernel) { block_equals_one_element<4, 1>(); }
 TEST(TetFastKernel, Tet10BlockEqualsOneElementKernel) { block_equals_one_element<10, 4>(); }
 
+// A straight-sided tet10 (mid-edge nodes at the midpoints) packed with one J0^-1 and weight
+// (tet::pack_straight) gives the forces of the four-Jacobian packing to round-off (~1e-14 of the
+// largest force); the randomly curved elements are not taken for straight. Blocks: every lane of
+// the straight kernel has the bits of its one-element version.
+TEST(TetFastKernel, StraightTet10SharesOneJacobian) {
+    std::mt19937 rng(77);
+    const hex8::Hex8Material mat = hex8::Hex8Material::from(kSoftRubber, 0.0, 3e-5, {.quadratic = 1.5, .linear = 0.06}, true);
+    tet::TetPackedBlock<1> block;
+    alignas(hex8::kLanesAlign) hex8::Lanes ub[3][10], vb[3][10];
+    std::vector<tet::TetKernelResult<10>> one(hex8::kLanes);
+    const int edge[6][2] = {{0, 1}, {1, 2}, {2, 0}, {0, 3}, {2, 3}, {1, 3}};
+    for (int trial = 0; trial < 40; ++trial) {
+        auto X = random_element<10>(rng);
+        EXPECT_FALSE(tet::straight_sided(X)) << trial;  // curved: the general packing stays
+        for (int e = 0; e < 6; ++e) X[4 + e] = 0.5 * (X[edge[e][0]] + X[edge[e][1]]);
+        ASSERT_TRUE(tet::straight_sided(X)) << trial;
+        const auto ref = tet::make_tet10_reference(X);
+        std::array<Vec3, 10> x, v;
+        random_state<10>(X, rng, x, v);
+        double u[3][10], va[3][10];
+        for (int a = 0; a < 10; ++a)
+            for (int i = 0; i < 3; ++i) {
+                u[i][a] = x[a][i] - X[a][i];
+                va[i][a] = v[a][i];
+            }
+        tet::TetKernelResult<10> four, shared;
+        tet::internal_force(tet::pack(ref), mat, u, va, four, true);
+        const auto packed = tet::pack_straight(ref);
+        tet::internal_force(packed, mat, u, va, shared, true);
+        double fmax = 0.0;
+        for (int a = 0; a < 10; ++a)
+            for (int i = 0; i < 3; ++i) fmax = std::max(fmax, std::abs(four.f[i][a]));
+        for (int a = 0; a < 10; ++a)
+            for (int i = 0; i < 3; ++i) {
+                EXPECT_NEAR(shared.f[i][a], four.f[i][a], 1e-14 * fmax) << trial << " node " << a;
+                EXPECT_NEAR(shared.fv[i][a], four.fv[i][a], 1e-14 * fmax) << trial << " node " << a;
+            }
+        EXPECT_NEAR(shared.strain_energy, four.strain_energy, 1e-14 * four.strain_energy) << trial;
+        EXPECT_NEAR(shared.viscous_power, four.viscous_power, 1e-14 * std::abs(four.viscous_power) + 1e-300) << trial;
+        EXPECT_NEAR(shared.min_jacobian, four.min_jacobian, 1e-14) << trial;
+        EXPECT_NEAR(shared.von_mises_sq, four.von_mises_sq, 1e-14 * four.von_mises_sq) << trial;
+        const int l = trial % hex8::kLanes;
+        tet::pack_lane(packed, l, block);
+        for (int a = 0; a < 10; ++a)
+            for (int i = 0; i < 3; ++i) {
+                ub[i][a][l] = u[i][a];
+                vb[i][a][l] = va[i][a];
+            }
+        one[l] = shared;
+        if (l == hex8::kLanes - 1) {
+            tet::TetKernelResultBlock<10> r;
+            tet::internal_force(block, mat, ub, vb, r, true);
+            for (int k = 0; k < hex8::kLanes; ++k) {
+                for (int i = 0; i < 3; ++i)
+                    for (int a = 0; a < 10; ++a) {
+                        EXPECT_EQ(r.f[i][a][k], one[k].f[i][a]) << k;
+                        EXPECT_EQ(r.fv[i][a][k], one[k].fv[i][a]) << k;
+                    }
+                EXPECT_EQ(r.strain_energy[k], one[k].strain_energy) << k;
+                EXPECT_EQ(r.von_mises_sq[k], one[k].von_mises_sq) << k;
+            }
+        }
+    }
+}
+
 TEST(TetFastKernel, CharacteristicLengthEqualsTable21) {
     std::mt19937 rng(3);
     for (int trial = 0; trial < 100; ++trial) {
@@ -188,9 +253,23 @@ void group_against_element_by_element(ElementShape shape) {
     std::mt19937 rng(8);
     std::uniform_real_distribution<double> g(-1.0, 1.0);
     for (auto& x : mesh.nodes) x += 0.001 * Vec3(g(rng), g(rng), g(rng));
+    if constexpr (N == 10) {
+        // Straight-sided tet10s in the half x < 0.1 (mid-edge nodes back on their edges' midpoints):
+        // whole blocks there take the one-Jacobian packing (tet::pack_straight), the rest four.
+        const int edge[6][2] = {{0, 1}, {1, 2}, {2, 0}, {0, 3}, {2, 3}, {1, 3}};
+        for (int e = 0; e < mesh.blocks[0].size(); ++e) {
+            const auto c = mesh.blocks[0].element(e);
+            if (mesh.nodes[c[0]].x() + mesh.nodes[c[1]].x() + mesh.nodes[c[2]].x() + mesh.nodes[c[3]].x() > 0.4) continue;
+            for (int k = 0; k < 6; ++k) mesh.nodes[c[4 + k]] = 0.5 * (mesh.nodes[c[edge[k][0]]] + mesh.nodes[c[edge[k][1]]]);
+        }
+    }
     const TetGroupOptions opt{.rayleigh_beta = 1e-6};
     Group group(mesh, 0, kSoftRubber, opt);
     ASSERT_GT(group.size(), 1024);
+    if constexpr (N == 10) {
+        EXPECT_GT(group.straight_blocks(), 0);
+        EXPECT_LT(group.straight_blocks(), (group.size() + hex8::kLanes - 1) / hex8::kLanes);
+    }
     std::vector<double> scale(group.size());
     for (auto& f : scale) f = 1.0 + (g(rng) + 1.0);
     group.set_mass_scaling(scale);
