@@ -164,6 +164,22 @@ void critical_time_step(const hex8::Lanes (&x)[3][4], const hex8::Lanes& trD, do
 /// Table 2-1 length (minimum altitude 3 V / largest face area) of one tetrahedron, the kernel's way.
 double characteristic_length(const double (&x)[3][4]);
 
+/// The tet10's Table 2-1 step on its current deformation as the element feels it: the length is the
+/// smallest, over the 4 integration points, altitude of the corner tetrahedron mapped by the
+/// current Jacobian at the point, J_q = J0 + du/dxi (J0: the corner tetrahedron's edges, the exact
+/// reference Jacobian of a straight-sided element). Why not the current corners' altitude (the tet4's
+/// rule): a tet10's forces, hence its stiffness and highest frequency, depend on the deformation at
+/// its 4 points only, while its corners alone can flatten with small strain when its edges curve; a
+/// sliver of the grasp model's bird (chicken_shackling Step 3) had 0.57 of its corner volume, det F
+/// 0.99-1.01 at its points and 0.14 MPa, and the corner rule cut the whole model's step from 2.6 to
+/// 1.45 us (tests/explicit: its highest frequency follows this length, not the corners'). For an
+/// affine deformation the two lengths are equal (to round-off), and at rest both are the Table 2-1
+/// length of the corner tetrahedron. x: the corner coordinates, u: the displacements of the 10 nodes.
+void critical_time_step_tet10(const hex8::Lanes (&x)[3][4], const hex8::Lanes (&u)[3][10], const hex8::Lanes& trD,
+                              double wave_speed, const BulkViscosity& bulk, hex8::Lanes& dt);
+/// That length for one element (x: corners, u: the 10 nodes' displacements).
+double characteristic_length_tet10(const double (&x)[3][4], const double (&u)[3][10]);
+
 /// Tangent stiffness of the element at the reference state (3N x 3N, DOFs ux, uy, uz node after
 /// node): the linearized neo-Hookean law is linear elasticity with the same lambda, mu, so this is
 /// int B^T D B dV by the element's own rule (equal to fem::solid::tet10_stiffness for tet10).

@@ -215,11 +215,18 @@ GroupForceResult TetGroup<N, Q>::internal_forces(NodalState& s, bool compute_dt)
             } else {
                 tet::internal_force(packed_[s], kmat_, u, v, r, book_viscous);
             }
-            // Table 2-1 tetrahedron (minimum altitude of the corner tetrahedron) on the current
-            // coordinates, with the bulk-viscosity Q term.
-            if (compute_dt)
-                tet::critical_time_step(x, bulk_on ? r.volumetric_strain_rate : no_rate, dt_wave_speed_, kmat_.bulk,
-                                        dt_block);
+            // Table 2-1 tetrahedron on the current deformation, with the bulk-viscosity Q term: the
+            // tet4 on its corners' altitude, the tet10 on the corner tetrahedron mapped by the
+            // Jacobian at each of its 4 points (tet::critical_time_step_tet10: its corners alone can
+            // flatten while the element is barely strained).
+            if (compute_dt) {
+                if constexpr (N == 10)
+                    tet::critical_time_step_tet10(x, u, bulk_on ? r.volumetric_strain_rate : no_rate, dt_wave_speed_, kmat_.bulk,
+                                                  dt_block);
+                else
+                    tet::critical_time_step(x, bulk_on ? r.volumetric_strain_rate : no_rate, dt_wave_speed_, kmat_.bulk,
+                                            dt_block);
+            }
             for (int l = 0; l < lanes; ++l) {
                 const int k = kb + l;
                 if (!(r.min_jacobian[l] > 0.0) || !std::isfinite(r.strain_energy[l])) {

@@ -12,6 +12,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <random>
 #include <vector>
 
@@ -230,6 +231,81 @@ TEST(TetFastKernel, CharacteristicLengthEqualsTable21) {
     }
 }
 
+// The tet10's step length on its integration points (tet::characteristic_length_tet10): at rest and
+// under any affine deformation it is the corner tetrahedron's Table 2-1 length; on a sliver of the
+// chicken_shackling grasp model (Step 3, bird element 7890 at 0.85 s: its corners flattened to 0.57
+// of their volume while the element's points kept det F 0.98..1.02) the element's highest frequency
+// (its tangent stiffness at that state by central differences of the forces, against its HRZ
+// masses) follows the integration-point length, not the corners' altitude, which would cut the
+// step by ~43 %.
+TEST(TetFastKernel, Tet10StepLengthFollowsTheIntegrationPointsNotTheCorners) {
+    // Reference and current positions [mm] of the grasp model's element (Gmsh node order), relative
+    // to their corners' centroids.
+    const double ref_mm[10][3] = {{0.303146, 1.663044, -1.819489}, {-0.096907, -1.416814, 3.180511}, {-2.536326, 1.053340, 0.175027},
+                                  {2.330087, -1.299569, -1.536050}, {0.103119, 0.123115, 0.680511},  {-1.316617, -0.181737, 1.677769},
+                                  {-1.116590, 1.358192, -0.822231}, {1.316617, 0.181737, -1.677769}, {-0.103119, -0.123115, -0.680511},
+                                  {1.116590, -1.358192, 0.822231}};
+    const double cur_mm[10][3] = {{1.074406, 1.150759, -1.823449}, {-1.241566, -1.195381, 3.006440}, {-1.118144, 2.509061, 0.258059},
+                                  {1.285304, -2.464439, -1.441049}, {0.010233, -0.021237, 0.735674},  {-1.294109, 0.653542, 1.711038},
+                                  {-0.049733, 1.791621, -0.780806}, {1.084266, -0.709855, -1.614071}, {-0.263949, -0.050550, -0.636335},
+                                  {0.031837, -1.792964, 0.775682}};
+    std::array<Vec3, 10> X, x;
+    for (int a = 0; a < 10; ++a) {
+        X[a] = 1e-3 * Vec3(ref_mm[a][0], ref_mm[a][1], ref_mm[a][2]);
+        x[a] = 1e-3 * Vec3(cur_mm[a][0], cur_mm[a][1], cur_mm[a][2]);
+    }
+    const int edge[6][2] = {{0, 1}, {1, 2}, {0, 2}, {0, 3}, {2, 3}, {1, 3}};  // straight-sided: the printed digits aside
+    for (int e = 0; e < 6; ++e) X[4 + e] = 0.5 * (X[edge[e][0]] + X[edge[e][1]]);
+    auto length = [&](const std::array<Vec3, 10>& at) {
+        double xc[3][4], u[3][10];
+        for (int a = 0; a < 10; ++a)
+            for (int i = 0; i < 3; ++i) {
+                if (a < 4) xc[i][a] = at[a][i];
+                u[i][a] = at[a][i] - X[a][i];
+            }
+        return tet::characteristic_length_tet10(xc, u);
+    };
+    const double corners_ref = cfl::tetrahedron_length({X[0], X[1], X[2], X[3]});
+    const double corners_now = cfl::tetrahedron_length({x[0], x[1], x[2], x[3]});
+    EXPECT_NEAR(length(X), corners_ref, 1e-13 * corners_ref);  // at rest: the Table 2-1 length
+    // An affine deformation (stretch, shear, rotation) of the straight-sided element: the corners' length.
+    Mat3 F;
+    F << 1.2, 0.3, -0.1, 0.05, 0.7, 0.2, -0.15, 0.1, 0.9;
+    std::array<Vec3, 10> affine;
+    for (int a = 0; a < 10; ++a) affine[a] = F * X[a] + Vec3(0.01, -0.02, 0.03);
+    EXPECT_NEAR(length(affine), cfl::tetrahedron_length({affine[0], affine[1], affine[2], affine[3]}), 1e-12 * corners_ref);
+    // The sliver: the corners lost 43 % of their altitude, the points did not.
+    EXPECT_LT(corners_now / corners_ref, 0.6);
+    const double points_now = length(x);
+    EXPECT_GT(points_now / corners_ref, 0.9);
+    // Its highest frequency: the tangent stiffness at x by central differences of the forces.
+    const ElasticMaterial bird = ElasticMaterial::make("chicken", 6.1e6, 0.49, 1135.0);  // chicken::material
+    const auto ref = tet::make_tet10_reference(X);
+    const hex8::Hex8Material mat = hex8::Hex8Material::from(bird);
+    const std::array<double, 10> m = tet::tet10_lumped_mass(X, bird.density);
+    auto omega_at = [&](const std::array<Vec3, 10>& at) {
+        Eigen::MatrixXd K(30, 30);
+        const std::array<Vec3, 10> v{};
+        const double h = 1e-9;
+        for (int b = 0; b < 10; ++b)
+            for (int j = 0; j < 3; ++j) {
+                auto plus = at, minus = at;
+                plus[b][j] += h, minus[b][j] -= h;
+                tet::Result<10> fp, fm;
+                tet::internal_force(ref, mat, std::span<const Vec3>(plus), std::span<const Vec3>(v), fp);
+                tet::internal_force(ref, mat, std::span<const Vec3>(minus), std::span<const Vec3>(v), fm);
+                for (int a = 0; a < 10; ++a)
+                    for (int i = 0; i < 3; ++i) K(3 * a + i, 3 * b + j) = (fp.force[a][i] - fm.force[a][i]) / (2.0 * h);
+            }
+        return tet::element_omega_max(0.5 * (K + K.transpose()), m);
+    };
+    const double frequency_ratio = omega_at(X) / omega_at(x);  // the step's ratio, now over at rest
+    EXPECT_NEAR(frequency_ratio, points_now / corners_ref, 0.1);
+    EXPECT_GT(frequency_ratio, 1.5 * corners_now / corners_ref);
+    std::printf("sliver: corner length ratio %.3f, integration-point length ratio %.3f, 2/omega ratio %.3f\n",
+                corners_now / corners_ref, points_now / corners_ref, frequency_ratio);
+}
+
 // The group's element order and coloured direct scatter on a block whose elements are shuffled and
 // large enough for the parallel path: the same bits on 1 and 2 threads; forces, energies, stresses,
 // the step and the controlling element (in the block's order) as an element-by-element evaluation
@@ -322,9 +398,20 @@ void group_against_element_by_element(ElementShape shape) {
         energy += r.strain_energy;
         power += r.viscous_power;
         EXPECT_NEAR(vm1[e], r.von_mises, 1e-12 * r.von_mises) << e;
-        // The element's own limit carried by its Table 2-1 step (tet_groups.hpp), mass scaling, the factor.
-        double dt = 0.7 * group.element_stability_ratio(e) *
-                    cfl::critical_time_step(shape, x, kSoftRubber, r.volumetric_strain_rate, opt.bulk) * std::sqrt(scale[e]);
+        // The element's own limit carried by its Table 2-1 step (tet_groups.hpp), mass scaling, the
+        // factor; the tet10's step on its integration points' deformation (critical_time_step_tet10).
+        double table = cfl::critical_time_step(shape, x, kSoftRubber, r.volumetric_strain_rate, opt.bulk);
+        if constexpr (N == 10) {
+            double xc[3][4], u[3][10];
+            for (int a = 0; a < N; ++a)
+                for (int i = 0; i < 3; ++i) {
+                    if (a < 4) xc[i][a] = x[a][i];
+                    u[i][a] = x[a][i] - s.X[group.connectivity(e)[a]][i];
+                }
+            table = cfl::solid_time_step(tet::characteristic_length_tet10(xc, u), cfl::wave_speed(shape, kSoftRubber),
+                                         r.volumetric_strain_rate, opt.bulk);
+        }
+        double dt = 0.7 * group.element_stability_ratio(e) * table * std::sqrt(scale[e]);
         const double xi = opt.rayleigh_beta / dt;
         dt *= std::sqrt(1.0 + xi * xi) - xi;
         if (dt < dt_min) {
