@@ -122,7 +122,8 @@ bool TetGroup<N, Q>::set_stability_factor(double r) {
 
 template <int N, int Q>
 std::string TetGroup<N, Q>::time_step_rule(int e) const {
-    return fmt::format("element limit 2/omega_e = {:.3f} x Table 2-1 altitude, on the current altitude", element_ratio_.at(e));
+    return fmt::format("element limit 2/omega_e = {:.3f} x Table 2-1 altitude, on the current {}", element_ratio_.at(e),
+                       N == 10 ? "deformation at the integration points" : "altitude");
 }
 
 template <int N, int Q>

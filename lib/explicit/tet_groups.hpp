@@ -14,7 +14,9 @@
 // target, lifts exactly the elements that set the limit: a mass_scaling_dt of a tet10 model is a
 // guaranteed step (keyed on Table 2-1 steps it gave about 0.37 x the target). Every cycle the
 // element's step follows its deformation as its Table 2-1 step does (altitudes shrink in
-// compression, the bulk-viscosity Q term): r x (2 / omega_e) x T_e(current) / T_e(reference). The
+// compression, the bulk-viscosity Q term): r x (2 / omega_e) x T_e(current) / T_e(reference), the
+// tet10's current length taken at its 4 integration points (tet::critical_time_step_tet10: its
+// corners alone can flatten while it is barely strained, which cut the grasp model's step 40 %). The
 // solver measures omega_max of all its solid groups together once at the start (Lanczos,
 // ExplicitSolver) and hands each group the factor r = (2 / omega_max) / (smallest reference step);
 // r >= 1 when tetrahedra control (the assembled limit exceeds the element bound: 1.6 on the Table 5-3
