@@ -244,6 +244,12 @@ std::string RunSummary::text() const {
                          stability_factor);
     s += fmt::format("  time step: first {:.4g} s, min {:.4g} s, max {:.4g} s; {} steps to t = {:.6g} s\n", first_dt,
                      min_dt, max_dt, steps, end_time);
+    if (step_limits.size() > 1) {
+        std::vector<std::string> limits;
+        for (const auto& l : step_limits) limits.push_back(fmt::format("{} {:.4g} s", l.name, l.dt));
+        s += fmt::format("  step limits at the end (1/dt^2 = sum of 1/dt_i^2, then the safety factor): {} -> {:.4g} s\n",
+                         fmt::join(limits, ", "), step_at_end);
+    }
     s += fmt::format("  energies [J]: kinetic {:.6g}, internal {:.6g}, hourglass {:.6g}, damping {:.6g}, "
                      "viscous {:.6g}, contact {:.6g}, external work {:.6g}, initial {:.6g}\n",
                      energy.kinetic, energy.internal, energy.hourglass, energy.damping, energy.viscous,
@@ -315,6 +321,12 @@ nlohmann::json RunSummary::to_json() const {
                          controlling_element)},
             {"controlling_dt_s", controlling_dt},
             {"controlling_rule", controlling_rule},
+            {"step_limits_at_end_s", [&] {
+                 nlohmann::json j = nlohmann::json::object();
+                 for (const auto& l : step_limits) j[l.name] = l.dt;
+                 return j;
+             }()},
+            {"step_at_end_s", step_at_end},
             {"stability_factor", stability_factor},
             {"mass_kg", mass},
             {"added_mass_kg", added_mass},
@@ -1634,6 +1646,13 @@ RunSummary ExplicitSolver::run() {
             static_cast<int>(g.block >= 0 ? model_.mesh().blocks[g.block].id(ctrl_element_) : ctrl_element_ + 1L);
         summary_.controlling_rule = g.time_step_rule(ctrl_element_);
     }
+    // What limits the step now (choose_dt's terms).
+    summary_.step_limits = {{"elements", dt_crit_}};
+    for (const auto& p : model_.force_providers()) {
+        const double dp = p->stable_time_step(s_);
+        if (std::isfinite(dp) && dp > 0.0) summary_.step_limits.push_back({fmt::format("'{}'", p->name()), dp});
+    }
+    summary_.step_at_end = choose_dt();
     // Timing table and contact interfaces (the final HDF5 below counts as output, measured first).
     summary_.interfaces.clear();
     for (std::size_t k = 0; k < providers_list.size(); ++k) {

@@ -356,6 +356,16 @@ struct RunSummary {
     double controlling_dt = 0;   // its critical step (before the 0.9 and the stability factor)
     double stability_factor = 1; // measured 2/omega_max over the smallest solid Table 2-1 step (solid groups; may exceed 1 for tetrahedra)
     double mass = 0, added_mass = 0, added_mass_fraction = 0;
+    // What limits the step at the end (ExplicitSolver::choose_dt): the elements' stable step and each
+    // force provider's (contact penalties, ties), combined as 1/dt^2 = sum 1/dt_i^2 before the
+    // dt_scale; providers without a limit are left out. Tells a user whether a contact's springs or
+    // an element hold the step down (LS-DYNA's d3hsp lists the smallest element steps only).
+    struct StepLimit {
+        std::string name;
+        double dt = 0;
+    };
+    std::vector<StepLimit> step_limits;
+    double step_at_end = 0;  // the step the limits give (dt_scale applied)
     EnergySummary energy;
     double wall_s = 0, element_cycles_per_s = 0;
     TimingSummary timing;
