@@ -1298,7 +1298,18 @@ int main(int argc, char** argv) {
                 const double density = chicken::density_for_mass(bird);
                 const Mesh mesh = grasp_bird_mesh(bird);  // a GmshSession gives the caller's threads back
                 fmt::print("grasp bird: {} nodes, {} tet10, density {:.1f} kg/m3\n", mesh.node_count(), mesh.element_count(), density);
-                const GraspRun r = run_grasp(kTable54[number - 1], mesh, density, end, out.staging(), restart);
+                // A run that goes unstable is a result too (where and when the model fails): its record
+                // up to that cycle, its VTU series and its newest dumps are committed with the solver's
+                // diagnosis in <name>-failure.txt, and the program still exits non-zero.
+                GraspRun r;
+                try {
+                    r = run_grasp(kTable54[number - 1], mesh, density, end, out.staging(), restart);
+                } catch (const SolverError& e) {
+                    io::write_text_file(out.staging() / (name + "-failure.txt"), std::string(e.what()) + "\n");
+                    out.commit();
+                    fmt::print("results up to the failure: {}\n", out.path().string());
+                    throw;
+                }
                 fmt::print("{}\n", r.summary.text());
                 for (std::size_t k = 0; k < r.time.size(); k += 10)
                     fmt::print("t {:.3f}  body ({:.1f}, {:.1f}) mm  perch ({:.1f}, {:.1f}) mm  theta_b {:.2f} deg  E tip dy {:.2f} mm  "
