@@ -17,26 +17,7 @@ import subprocess
 import sys
 import time
 
-failures = []
-
-
-def fail(message):
-    failures.append(message)
-    print("FAIL " + message)
-
-
-def staged_dumps(folder):
-    found = []
-    if os.path.isdir(folder):
-        for d in os.listdir(folder):
-            if d.startswith(".run-") and os.path.isdir(os.path.join(folder, d)):
-                found += [f for f in os.listdir(os.path.join(folder, d)) if "-restart-" in f and f.endswith(".h5")]
-    return sorted(found)
-
-
-def read(path):
-    with open(path, "rb") as f:
-        return f.read()
+from check_resume_explicit import dumps_in_staging, fail, failures, read  # the fem-explicit resume check's helpers
 
 
 def main():
@@ -54,14 +35,14 @@ def main():
         fail(f"--resume without a killed run: exit {refused.returncode}, {refused.stderr!r}")
 
     run = subprocess.Popen(grasp + ["--results", out], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-    while run.poll() is None and not staged_dumps(out):
+    while run.poll() is None and not dumps_in_staging(out):
         time.sleep(0.005)
     if run.poll() is None:
         os.kill(run.pid, signal.SIGKILL)
     if run.wait() != -signal.SIGKILL:
         fail("the run ended before it could be killed after its first dump: make it longer")
         return
-    killed_at = staged_dumps(out)
+    killed_at = dumps_in_staging(out)
     print(f"killed after {killed_at}")
     resumed = subprocess.run(grasp + ["--results", out, "--resume"], capture_output=True, text=True)
     if resumed.returncode != 0:
