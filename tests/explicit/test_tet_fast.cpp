@@ -285,7 +285,8 @@ TEST(TetFastKernel, Tet10StepLengthFollowsTheIntegrationPointsNotTheCorners) {
     const std::array<double, 10> m = tet::tet10_lumped_mass(X, bird.density);
     auto omega_at = [&](const std::array<Vec3, 10>& at) {
         Eigen::MatrixXd K(30, 30);
-        const std::array<Vec3, 10> v{};
+        std::array<Vec3, 10> v;  // at rest (Eigen vectors are not zeroed by {}: garbage velocities would add bulk viscosity)
+        v.fill(Vec3::Zero());
         const double h = 1e-9;
         for (int b = 0; b < 10; ++b)
             for (int j = 0; j < 3; ++j) {
