@@ -405,46 +405,23 @@ void critical_time_step(const hex8::Lanes (&x)[3][4], const hex8::Lanes& trD, do
 double characteristic_length(const double (&x)[3][4]) { return length_of(x); }
 
 namespace {
-// The tet10 length at the integration points (tet_explicit.hpp, critical_time_step_tet10). At point
-// q (L_q = a, the other three b; kRuleA, kRuleB) the parametric displacement gradient is
-// G_k = c_{k+1} - c_0 with c_m = sum_a u_a dN_a/dL_m (the kernel's barycentric form): corner m
-// contributes (4 L_m - 1) u_m, the mid-edge node of edge (m, j) 4 L_j u_mid.
+// The tet10 length at the integration points (tet_explicit.hpp, critical_time_step_tet10): at each
+// point q the corner tetrahedron mapped by J_q = J0 + G_q, G_q the kernel's parametric displacement
+// gradient (natural_gradient), its Table 2-1 length by the tet4's own rule (length_of) on the
+// mapped corners (0, J_q e_1, J_q e_2, J_q e_3).
 template <class T>
 [[gnu::always_inline]] inline T length_tet10(const T (&x)[3][4], const T (&u)[3][10]) {
-    constexpr int kEdge[6][2] = {{0, 1}, {1, 2}, {0, 2}, {0, 3}, {2, 3}, {1, 3}};  // nodes 4..9 (Gmsh order)
-    T E0[3][3];  // the corner tetrahedron's reference edges X_{k+1} - X_0 (X = x - u)
-    for (int i = 0; i < 3; ++i)
-        for (int k = 0; k < 3; ++k) E0[i][k] = (x[i][k + 1] - u[i][k + 1]) - (x[i][0] - u[i][0]);
     T shortest{};
     for (int q = 0; q < 4; ++q) {
-        double L[4];
-        for (int m = 0; m < 4; ++m) L[m] = m == q ? kRuleA : kRuleB;
-        T E[3][3];  // J_q = J0 + G
+        T G[3][3];
+        natural_gradient<10>(q, u, G);
+        T mapped[3][4];
         for (int i = 0; i < 3; ++i) {
-            T c[4];
-            for (int m = 0; m < 4; ++m) c[m] = (4.0 * L[m] - 1.0) * u[i][m];
-            for (int e = 0; e < 6; ++e) {
-                const int m = kEdge[e][0], j = kEdge[e][1];
-                c[m] += 4.0 * L[j] * u[i][4 + e];
-                c[j] += 4.0 * L[m] * u[i][4 + e];
-            }
-            for (int k = 0; k < 3; ++k) E[i][k] = E0[i][k] + (c[k + 1] - c[0]);
+            mapped[i][0] = T{};
+            // J0's column k: the reference corner edge X_{k+1} - X_0 (X = x - u).
+            for (int k = 0; k < 3; ++k) mapped[i][k + 1] = (x[i][k + 1] - u[i][k + 1]) - (x[i][0] - u[i][0]) + G[i][k];
         }
-        // Altitude of the tetrahedron (0, E_0, E_1, E_2): |det E| / largest |cross product of two
-        // edges of a face| (3 V / A with V = |det| / 6, A = |cross| / 2).
-        auto cross_sq = [&](const T (&p)[3], const T (&r)[3], T (&n)[3]) {
-            n[0] = p[1] * r[2] - p[2] * r[1];
-            n[1] = p[2] * r[0] - p[0] * r[2];
-            n[2] = p[0] * r[1] - p[1] * r[0];
-            return n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
-        };
-        const T a[3] = {E[0][0], E[1][0], E[2][0]}, b[3] = {E[0][1], E[1][1], E[2][1]}, d[3] = {E[0][2], E[1][2], E[2][2]};
-        const T ba[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, da[3] = {d[0] - a[0], d[1] - a[1], d[2] - a[2]};
-        T n[3];
-        T largest = cross_sq(b, d, n);  // face (0, E_1, E_2); its normal gives the volume
-        const T det = a[0] * n[0] + a[1] * n[1] + a[2] * n[2];
-        for (const T s : {cross_sq(a, b, n), cross_sq(d, a, n), cross_sq(ba, da, n)}) largest = select(s > largest, s, largest);
-        const T h = select(det < 0.0, -det, det) / lanes::sqrt_lanes(largest);
+        const T h = length_of(mapped);
         shortest = q == 0 ? h : select(h < shortest, h, shortest);
     }
     return shortest;
