@@ -1039,22 +1039,34 @@ std::vector<std::string> provider_names(ExplicitModel& model) {
 }
 }  // namespace
 
-std::filesystem::path ExplicitSolver::latest_restart(const std::filesystem::path& dir, std::string_view name) {
+std::vector<std::filesystem::path> ExplicitSolver::restart_files_in(const std::filesystem::path& dir, std::string_view name) {
     const std::string prefix = safe_file_name(name) + "-restart-";
-    std::filesystem::path best;
-    long best_step = -1;
+    std::vector<std::pair<long, std::filesystem::path>> found;
     std::error_code ec;
     for (const auto& e : std::filesystem::directory_iterator(dir, ec)) {
         const std::string f = e.path().filename().string();
         if (f.rfind(prefix, 0) != 0 || e.path().extension() != ".h5") continue;
         const std::string digits = f.substr(prefix.size(), f.size() - prefix.size() - 3);
         if (digits.empty() || !std::all_of(digits.begin(), digits.end(), [](char c) { return std::isdigit(c); })) continue;
-        const long step = std::stol(digits);
-        if (step > best_step) best_step = step, best = e.path();
+        found.emplace_back(std::stol(digits), e.path());
     }
-    if (best_step < 0)
-        throw InputError(fmt::format("no restart file of run '{}' ({}<step>.h5) in '{}'", name, prefix, dir.string()));
-    return best;
+    std::sort(found.begin(), found.end());
+    std::vector<std::filesystem::path> files;
+    for (auto& [step, path] : found) files.push_back(std::move(path));
+    return files;
+}
+
+std::filesystem::path ExplicitSolver::latest_restart(const std::filesystem::path& dir, std::string_view name) {
+    const auto files = restart_files_in(dir, name);
+    if (files.empty())
+        throw InputError(fmt::format("no restart file of run '{}' ({}-restart-<step>.h5) in '{}'", name, safe_file_name(name),
+                                     dir.string()));
+    return files.back();
+}
+
+void ExplicitSolver::remove_older_restarts(const std::filesystem::path& dir, std::string_view name, std::size_t keep) {
+    const auto files = restart_files_in(dir, name);
+    for (std::size_t k = 0; k + keep < files.size(); ++k) std::filesystem::remove(files[k]);
 }
 
 void ExplicitSolver::restart_dumps() {

@@ -412,6 +412,11 @@ public:
     /// The latest restart file of run `name` in `dir` (the highest step), e.g. to resume a killed
     /// run; InputError when there is none.
     static std::filesystem::path latest_restart(const std::filesystem::path& dir, std::string_view name);
+    /// The restart files of run `name` in `dir`, oldest first (by step).
+    static std::vector<std::filesystem::path> restart_files_in(const std::filesystem::path& dir, std::string_view name);
+    /// Removes all but the newest `keep` restart files of run `name` in `dir` (a long run keeps
+    /// only what a resumption needs; the newest is complete: each is written under a temporary name).
+    static void remove_older_restarts(const std::filesystem::path& dir, std::string_view name, std::size_t keep);
     /// Writes the complete state to `path` (what the restart options do at their times).
     void write_restart(const std::filesystem::path& path) const;
     /// Largest element von Mises stress of part `part` at the last force evaluation (0 for a part

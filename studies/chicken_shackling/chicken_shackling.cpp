@@ -486,17 +486,6 @@ GraspRun read_grasp_dat(const std::filesystem::path& path, int case_number, doub
     return r;
 }
 
-/// Removes all but the newest `keep` restart dumps of run `name` in `dir` (a dump of the grasp model
-/// is ~MB; only the newest serves a resumption).
-void prune_restart_dumps(const std::filesystem::path& dir, std::string_view name, std::size_t keep) {
-    const std::string prefix = std::string(name) + "-restart-";  // ExplicitSolver's names (safe already)
-    std::vector<std::filesystem::path> dumps;
-    for (const auto& e : std::filesystem::directory_iterator(dir))
-        if (e.path().filename().string().rfind(prefix, 0) == 0 && e.path().extension() == ".h5") dumps.push_back(e.path());
-    std::sort(dumps.begin(), dumps.end());  // zero-padded steps: sorted by name is sorted in time
-    for (std::size_t k = 0; k + keep < dumps.size(); ++k) std::filesystem::remove(dumps[k]);
-}
-
 /// How a grasp run is dumped and resumed.
 struct GraspRestart {
     double dump_every = 0.025;  // [s] of model time (~1-2 min of CPU in contact)
@@ -559,14 +548,14 @@ GraspRun run_grasp(const GraspCase& c, const Mesh& bird, double density, double 
         for (int n : paws) p += s.x[n] / static_cast<double>(paws.size());
         r.paw.push_back(p);
         dat << grasp_dat_row(r, r.time.size() - 1) << std::flush;
-        if (sv.restart_files().size() != dumps_seen) dumps_seen = sv.restart_files().size(), prune_restart_dumps(out, name, 2);
+        if (sv.restart_files().size() != dumps_seen) dumps_seen = sv.restart_files().size(), ExplicitSolver::remove_older_restarts(out, name, 2);
     };
     const auto t0 = std::chrono::steady_clock::now();
     r.summary = solver.run();
     r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     dat.close();
     if (!dat) throw InputError(fmt::format("cannot write '{}'", dat_path.string()));
-    prune_restart_dumps(out, name, 1);  // the end state's (restart_times), to go on from
+    ExplicitSolver::remove_older_restarts(out, name, 1);  // the end state's (restart_times), to go on from
     write_grasp_surfaces(out / (name + "-end"), hm, solver.state().x);
     return r;
 }
