@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 
 #include "core/error.hpp"
+#include "io/hdf5.hpp"
 
 namespace fem {
 
@@ -17,6 +18,9 @@ OffsetTie::OffsetTie(std::string name, std::vector<int> nodes, std::vector<int> 
     if (nodes_.size() != anchors_.size() || nodes_.empty())
         throw InputError(fmt::format("tie '{}': {} tied nodes and {} anchors (need one anchor per node, at least one)", name_,
                                      nodes_.size(), anchors_.size()));
+    if (options_.engage_time > -std::numeric_limits<double>::infinity())
+        throw InputError(fmt::format("tie '{}': an engage time needs a prescribed motion as the anchor (node anchors hold "
+                                     "their reference offsets from the start)", name_));
     for (std::size_t i = 0; i < nodes_.size(); ++i)
         if (nodes_[i] == anchors_[i]) throw InputError(fmt::format("tie '{}': node {} is tied to itself", name_, nodes_[i]));
     check_options();
@@ -36,6 +40,9 @@ void OffsetTie::check_options() const {
     if (!(options_.frequency > 0.0) || !(options_.damping_ratio >= 0.0))
         throw InputError(fmt::format("tie '{}': frequency must be positive and the damping ratio non-negative", name_));
     if (std::isnan(options_.release_time)) throw InputError(fmt::format("tie '{}': the release time is not a number", name_));
+    if (std::isnan(options_.engage_time) || !(options_.engage_time < options_.release_time))
+        throw InputError(fmt::format("tie '{}': the engage time ({} s) must come before the release time ({} s)", name_,
+                                     options_.engage_time, options_.release_time));
 }
 
 void OffsetTie::initialize(const NodalState& s) {
@@ -95,9 +102,14 @@ void OffsetTie::initialize(const NodalState& s) {
 void OffsetTie::add_forces(double t, const NodalState& s, std::vector<Vec3>& force, std::vector<Vec3>& moment) {
     max_gap_ = 0.0;
     total_force_.setZero();
-    if (released(t)) return;
+    if (!holding(t)) return;
     if (motion_) {
         const RigidPose pose = motion_->pose(t);
+        if (options_.engage_time > -std::numeric_limits<double>::infinity() && !engaged_) {
+            // Engaging now: hold each node at the motion's material point where it is (X = R^T (x - d)).
+            for (std::size_t i = 0; i < nodes_.size(); ++i) offset_[i] = pose.R.transpose() * (s.x[nodes_[i]] - pose.d);
+            engaged_ = true;
+        }
         for (std::size_t i = 0; i < nodes_.size(); ++i) {
             const int p = nodes_[i];
             const Vec3 gap = s.x[p] - pose.position(offset_[i]);
@@ -120,6 +132,24 @@ void OffsetTie::add_forces(double t, const NodalState& s, std::vector<Vec3>& for
         max_gap_ = std::max(max_gap_, gap.norm());
         total_force_ += f;
     }
+}
+
+// Only a late engagement has state: whether it happened and the held points it captured.
+void OffsetTie::save_state(io::H5Writer& w, const std::string& prefix) const {
+    if (!(options_.engage_time > -std::numeric_limits<double>::infinity())) return;
+    std::vector<double> held{engaged_ ? 1.0 : 0.0};
+    for (const Vec3& X : offset_) held.insert(held.end(), {X.x(), X.y(), X.z()});
+    w.write(prefix + "engaged_and_held_points", held);
+}
+
+void OffsetTie::restore_state(const io::H5Reader& r, const std::string& prefix) {
+    if (!(options_.engage_time > -std::numeric_limits<double>::infinity())) return;
+    const auto held = r.read(prefix + "engaged_and_held_points");
+    if (held.size() != 1 + 3 * offset_.size())
+        throw InputError(fmt::format("restart file '{}': tie '{}': {} values in {}engaged_and_held_points, expected {}", r.path().string(),
+                                     name_, held.size(), prefix, 1 + 3 * offset_.size()));
+    engaged_ = held[0] != 0.0;
+    for (std::size_t i = 0; i < offset_.size(); ++i) offset_[i] = Vec3(held[1 + 3 * i], held[2 + 3 * i], held[3 + 3 * i]);
 }
 
 double OffsetTie::stable_time_step(const NodalState&) const { return dt_ > 0.0 ? dt_ : std::numeric_limits<double>::infinity(); }

@@ -25,6 +25,12 @@
 // - `release_time`: from that time on the ties exert nothing (the paws let go at the shackling
 //   time). Their work up to then stays booked, so the energy balance holds across the release: the
 //   energy the springs held is what they had taken out of the structure, and it stays taken out.
+// - `engage_time` (motion anchors): the ties exert nothing before that time and then hold each node
+//   at the point of the motion where the node is at that time (the material point X with
+//   pose(t_e).position(X) = x_p(t_e)), e.g. the shackle's gripper taking the paws at the shackling
+//   time (Sec 5.3: "the shackle ... grips both legs"). The node's velocity relative to that point
+//   is then taken out by the dashpot and the spring within a few periods of the tie (~1 ms at 2 kHz
+//   and a damping ratio 0.3): a gripper closing, not a rigid impact.
 #include <limits>
 #include <optional>
 #include <string>
@@ -40,6 +46,9 @@ struct OffsetTieOptions {
     double damping_ratio = 0.3;   // of that frequency
     /// [s] the ties act for t < release_time and exert nothing from it on (default: never released).
     double release_time = std::numeric_limits<double>::infinity();
+    /// [s] motion anchors only: the ties act from this time on, each node held where it is then
+    /// (default: from the start, each node held where the motion carries its reference position).
+    double engage_time = -std::numeric_limits<double>::infinity();
 };
 
 class OffsetTie final : public ForceProvider {
@@ -60,6 +69,11 @@ public:
     const Vec3& total_force() const { return total_force_; }
     /// Whether the ties have let go at time t (t >= options.release_time).
     bool released(double t) const { return t >= options_.release_time; }
+    /// Whether the ties act at time t (engaged and not yet released).
+    bool holding(double t) const { return t >= options_.engage_time && !released(t); }
+    /// Restart: with an engage time, whether the ties have engaged and where they hold the nodes.
+    void save_state(io::H5Writer& w, const std::string& prefix) const override;
+    void restore_state(const io::H5Reader& r, const std::string& prefix) override;
 
 private:
     std::string name_;
@@ -67,7 +81,8 @@ private:
     std::optional<RigidMotion> motion_;
     OffsetTieOptions options_;
     void check_options() const;
-    std::vector<Vec3> offset_;        // X_p - X_a (reference); with a motion anchor X_p
+    std::vector<Vec3> offset_;        // X_p - X_a (reference); with a motion anchor X_p (after a late engagement: the held point)
+    bool engaged_ = false;            // a late engagement has captured the held points
     std::vector<double> k_, c_;
     double dt_ = 0.0;
     double max_gap_ = 0.0;

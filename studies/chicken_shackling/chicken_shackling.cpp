@@ -327,8 +327,8 @@ void run_parallel(std::vector<std::function<void()>> jobs, unsigned workers) {
 // fixed rigid plate from its fixed end to the gripper (reconstruction 16). Reconstructions of this
 // model [R] (README, Step 3): the perch is a rigid flat plate at the paws' lowest point (the thesis's
 // Al tube, 25 mm, only carries the tied paws until 0.9 s); the shackle's gripper slot (Figs 5-6/5-7)
-// is not modelled (a flat plate: the legs held by friction only); the side holder is left out (its
-// place is not printed); no self-contact of the bird.
+// is not modelled: the paws are tied to the shackle from 0.9 s where they are then (the gripper
+// taking the legs); the side holder is left out (its place is not printed); no self-contact of the bird.
 constexpr double kConveyorPeak = 0.7, kShacklingTime = 0.9, kGraspEnd = 1.1;  // Table 5-6 [s]
 const Vec3 kConveyorUp(-0.4723, 0.04132, 0.0), kConveyorDown(-0.4105, -0.23705, 0.0);  // Table 5-6 [m/s]
 const Vec3 kGripper(0.0, -0.026, 0.130), kShackleFixedEnd(-0.187, -0.135, 0.116);       // Table 5-6 [m]
@@ -370,7 +370,11 @@ hand::Scene grasp_scene(const GraspCase& c, const Mesh& bird, double density) {
     o.material = chicken::material(density);
     o.initial_velocity = kConveyorUp;  // Table 5-6: the bird starts with the conveyor
     o.symmetry_set = "symmetry";
-    o.ties = {{.node_set = "paw", .plate = "perch", .release_time = kShacklingTime}};
+    // The paws ride the perch until the shackling time, then the shackle's gripper takes them where
+    // they are (Sec 5.3: at t_shackling "the shackle ... grips both legs"; its slot is not drawn with
+    // dimensions, reconstruction 16): one tie lets go as the other engages.
+    o.ties = {{.node_set = "paw", .plate = "perch", .release_time = kShacklingTime},
+              {.node_set = "paw", .plate = "shackle", .engage_time = kShacklingTime}};
     s.meshes.push_back(o);
     // The perch: a rigid plate under the paws (its top at the paws' lowest point), across the leg.
     double paw_y = std::numeric_limits<double>::infinity();
@@ -458,11 +462,11 @@ std::string grasp_dat_row(const GraspRun& r, std::size_t k) {
 }
 
 /// The rows of record `path` up to model time `until` (the restart dump's: the row sampled in the
-/// dump's cycle is the last one kept; 0.5 ms is half the sampling interval), back in SI units.
-/// Throws InputError when the record ends before `until` (it is not the dump's run).
+/// dump's cycle is the last one kept; 0.5 ms is half the sampling interval; infinity: every row),
+/// back in SI units. Throws InputError when the record ends before `until` (it is not the dump's run).
 GraspRun read_grasp_dat(const std::filesystem::path& path, int case_number, double until) {
     std::ifstream in(path);
-    if (!in) throw InputError(fmt::format("--resume: the killed run left no record '{}'", path.string()));
+    if (!in) throw InputError(fmt::format("cannot read the grasp record '{}'", path.string()));
     GraspRun r;
     r.case_number = case_number;
     for (std::string line; std::getline(in, line);) {
@@ -480,7 +484,7 @@ GraspRun read_grasp_dat(const std::filesystem::path& path, int case_number, doub
         for (std::size_t f = 0; f < 5; ++f) r.tip_y[f].push_back(v[10 + f] * mm), r.stress[f].push_back(v[15 + f] * 1e6);
         r.finger_force.push_back(v[20]);
     }
-    if (r.time.empty() || r.time.back() < until - 0.5e-3)
+    if (r.time.empty() || (std::isfinite(until) && r.time.back() < until - 0.5e-3))
         throw InputError(fmt::format("--resume: the record '{}' ends at {:.4f} s, before the restart dump's {:.4f} s", path.string(),
                                      r.time.empty() ? 0.0 : r.time.back(), until));
     return r;
@@ -558,6 +562,108 @@ GraspRun run_grasp(const GraspCase& c, const Mesh& bird, double density, double 
     ExplicitSolver::remove_older_restarts(out, name, 1);  // the end state's (restart_times), to go on from
     write_grasp_surfaces(out / (name + "-end"), hm, solver.state().x);
     return r;
+}
+
+// The criteria of Step 3 (README, written before the first run; `only-case-4-releases` revised
+// before the first run with the gripper), measured on the records of the five cases of Table 5-4.
+// Indices follow the records' rows (1 ms apart).
+struct GraspMeasures {
+    int case_number = 0;
+    double theta_max = 0.0, theta_max_time = 0.0, theta_end = 0.0, end_time = 0.0;  // [rad], [s]
+    std::array<double, 5> tip_peak{}, tip_time{}, stress_peak{}, stress_time{};     // |tip dy| [m], von Mises [Pa]
+    double distance_rms = 0.0;       // RMS over 0-0.9 s of |body - perch| less its t = 0 value [m] (Fig 5-11)
+    double oscillation = 0.0;        // peak-to-peak of body y - perch y over 0.3-0.9 s [m]
+    double grasp_force_peak = 0.0;   // largest fingers-on-bird force over 0-0.9 s [N]
+    double release_force = 0.0;      // largest fingers-on-bird force over the last 10 ms [N]
+};
+
+GraspMeasures measure_grasp(const GraspRun& r) {
+    GraspMeasures m;
+    m.case_number = r.case_number;
+    if (r.time.empty()) throw InputError(fmt::format("grasp case {}: the record is empty", r.case_number));
+    m.end_time = r.time.back();
+    m.theta_end = r.theta_b.back();
+    m.theta_max = -std::numeric_limits<double>::infinity();
+    double y_min = std::numeric_limits<double>::infinity(), y_max = -y_min, sum2 = 0.0;
+    int n_rms = 0;
+    const double d0 = (r.body[0] - r.perch[0]).head<2>().norm();
+    for (std::size_t k = 0; k < r.time.size(); ++k) {
+        const double t = r.time[k];
+        if (r.theta_b[k] > m.theta_max) m.theta_max = r.theta_b[k], m.theta_max_time = t;
+        for (std::size_t f = 0; f < 5; ++f) {
+            if (std::abs(r.tip_y[f][k]) > m.tip_peak[f]) m.tip_peak[f] = std::abs(r.tip_y[f][k]), m.tip_time[f] = t;
+            if (r.stress[f][k] > m.stress_peak[f]) m.stress_peak[f] = r.stress[f][k], m.stress_time[f] = t;
+        }
+        if (t <= kShacklingTime + 1e-9) {
+            const double d = (r.body[k] - r.perch[k]).head<2>().norm() - d0;
+            sum2 += d * d, ++n_rms;
+            m.grasp_force_peak = std::max(m.grasp_force_peak, r.finger_force[k]);
+            if (t >= 0.3 - 1e-9) y_min = std::min(y_min, r.body[k].y() - r.perch[k].y()), y_max = std::max(y_max, r.body[k].y() - r.perch[k].y());
+        }
+        if (t >= m.end_time - 0.010 - 1e-9) m.release_force = std::max(m.release_force, r.finger_force[k]);
+    }
+    m.distance_rms = std::sqrt(sum2 / std::max(n_rms, 1));
+    m.oscillation = y_max > y_min ? y_max - y_min : 0.0;
+    return m;
+}
+
+/// The Step 3 verdicts (README's criteria and tolerances) of the measured cases, as a Markdown table;
+/// the trends across cases need all five, the Case 4 values Case 4.
+std::string grasp_verdicts(const std::vector<GraspMeasures>& cases) {
+    auto find = [&](int number) -> const GraspMeasures* {
+        for (const auto& m : cases)
+            if (m.case_number == number) return &m;
+        return nullptr;
+    };
+    std::string t = "| id | thesis (Case 4) | ours | verdict |\n|---|---|---|---|\n";
+    auto row = [&](std::string_view id, std::string_view thesis, const std::string& ours, bool pass) {
+        t += fmt::format("| `{}` | {} | {} | {} |\n", id, thesis, ours, pass ? "pass" : "miss");
+    };
+    if (const GraspMeasures* c4 = find(4); c4 && c4->end_time >= kGraspEnd - 1e-6) {
+        row("fig-5-13/theta-b-max", "24.5 deg at 0.88 s", fmt::format("{:.1f} deg at {:.3f} s", c4->theta_max / deg, c4->theta_max_time),
+            std::abs(c4->theta_max / deg - 24.5) <= 10.0 && std::abs(c4->theta_max_time - 0.88) <= 0.05);
+        row("fig-5-13/theta-b-min", "-60 deg at 1.1 s", fmt::format("{:.1f} deg at {:.3f} s", c4->theta_end / deg, c4->end_time),
+            std::abs(c4->theta_end / deg + 60.0) <= 15.0);
+        row("fig-5-14/tip-e", "70.3 mm at 0.94 s", fmt::format("{:.1f} mm at {:.3f} s", c4->tip_peak[4] / mm, c4->tip_time[4]),
+            std::abs(c4->tip_peak[4] / mm / 70.3 - 1.0) <= 0.35 && std::abs(c4->tip_time[4] - 0.94) <= 0.05);
+        const auto s = std::max_element(c4->stress_peak.begin(), c4->stress_peak.end()) - c4->stress_peak.begin();
+        row("fig-5-15/finger-stress", "2.85 MPa at 0.97 s",
+            fmt::format("{:.2f} MPa at {:.3f} s (finger {})", c4->stress_peak[s] / 1e6, c4->stress_time[s], GraspRun::kFingers[s]),
+            std::abs(c4->stress_peak[s] / 1e6 / 2.85 - 1.0) <= 0.5);
+        const auto tip = std::max_element(c4->tip_peak.begin(), c4->tip_peak.end()) - c4->tip_peak.begin();
+        row("fig-5-14/largest-is-e", "finger E largest",
+            fmt::format("largest tip: {} ({:.1f} mm), largest stress: {} ({:.2f} MPa)", GraspRun::kFingers[tip], c4->tip_peak[tip] / mm,
+                        GraspRun::kFingers[s], c4->stress_peak[s] / 1e6),
+            tip == 4 && s == 4);
+    }
+    bool all = true;
+    for (int n = 1; n <= 5; ++n) all = all && find(n) && find(n)->end_time >= kGraspEnd - 1e-6;
+    if (!all) return t + "\n(the trends across cases need all five cases run to 1.1 s)\n";
+    auto list = [&](auto value, double scale, const char* unit) {
+        std::string v;
+        for (int n = 1; n <= 5; ++n) v += fmt::format("{}{}: {:.3g}", n > 1 ? ", " : "", n, value(*find(n)) / scale);
+        return v + " " + unit;
+    };
+    auto smallest_is = [&](auto value, int number) {
+        for (int n = 1; n <= 5; ++n)
+            if (n != number && value(*find(n)) <= value(*find(number))) return false;
+        return true;
+    };
+    const auto rms = [](const GraspMeasures& m) { return m.distance_rms; };
+    row("fig-5-11/case-4-closest", "Case 4 minimizes the distance to the conveyor", "RMS " + list(rms, mm, "mm"), smallest_is(rms, 4));
+    const auto osc = [](const GraspMeasures& m) { return m.oscillation; };
+    bool oscillate = true;
+    for (int n : {1, 2, 3})
+        for (int q : {4, 5}) oscillate = oscillate && osc(*find(n)) > osc(*find(q));
+    row("fig-5-11/cases-1-3-oscillate", "cases 1-3 oscillate", "peak-to-peak " + list(osc, mm, "mm"), oscillate);
+    const auto hit = [](const GraspMeasures& m) { return m.grasp_force_peak; };
+    row("fig-5-10/cases-1-2-hit", "the fingers hit the body in cases 1, 2", "largest force " + list(hit, 1.0, "N"),
+        hit(*find(1)) > hit(*find(4)) && hit(*find(2)) > hit(*find(4)));
+    const auto rel = [](const GraspMeasures& m) { return m.release_force; };
+    bool releases = rel(*find(4)) == 0.0;
+    for (int n : {1, 2, 3, 5}) releases = releases && rel(*find(n)) > 0.0;
+    row("fig-5-10/only-case-4-releases", "only Case 4 releases by 1.1 s", "force over 1.09-1.1 s " + list(rel, 1.0, "N"), releases);
+    return t;
 }
 
 // --- Step 4: the shackle rotating and inverting FE model (Sec 5.4.2) ----------------------------------------
@@ -1257,6 +1363,36 @@ int main(int argc, char** argv) {
                 return 0;
             });
         }
+    // --grasp-verdicts [record ...]: the Step 3 criteria judged on the records of --grasp runs
+    // (default: the five side runs' grasp-case-<n>.dat); writes grasp-verdicts.md beside them.
+    for (int i = 1; i < argc; ++i)
+        if (std::strcmp(argv[i], "--grasp-verdicts") == 0)
+            return run_program("chicken_shackling --grasp-verdicts", [&] {
+                std::vector<std::filesystem::path> records;
+                for (const std::string& r : operands(i)) records.emplace_back(r);
+                if (records.empty())
+                    for (int n = 1; n <= 5; ++n) {
+                        const std::string name = fmt::format("grasp-case-{}", n);
+                        const auto path = check::side_run_folder("chicken_shackling", name, {}) / (name + ".dat");
+                        if (std::filesystem::exists(path)) records.push_back(path);
+                    }
+                if (records.empty()) throw InputError("--grasp-verdicts: no grasp record found (run --grasp <case> first)");
+                std::vector<GraspMeasures> cases;
+                for (const auto& path : records) {
+                    const std::string stem = path.stem().string();
+                    const int number = stem.rfind("grasp-case-", 0) == 0 ? std::atoi(stem.c_str() + 11) : 0;
+                    if (number < 1 || number > 5)
+                        throw InputError(fmt::format("--grasp-verdicts: '{}' is not a grasp-case-<1..5>.dat record", path.string()));
+                    cases.push_back(measure_grasp(read_grasp_dat(path, number, std::numeric_limits<double>::infinity())));
+                    fmt::print("case {}: {} to {:.4f} s\n", number, path.string(), cases.back().end_time);
+                }
+                const std::string table = grasp_verdicts(cases);
+                fmt::print("{}", table);
+                io::RunFolder out(check::side_run_folder("chicken_shackling", "grasp-verdicts", args), "chicken_shackling --grasp-verdicts");
+                io::write_text_file(out.staging() / "grasp-verdicts.md", table);
+                out.commit();
+                return 0;
+            });
     // --grasp <case 1..5> [end time]: one Step 3 case of Table 5-4 alone (not in the study run yet:
     // README, Step 3).
     for (int i = 1; i < argc; ++i)
