@@ -499,7 +499,8 @@ struct GraspRestart {
 /// One case of Table 5-4 from 0 to end_time (Gmsh-free: the bird mesh is given). Writes into folder
 /// `out`: grasp-case-<n>.pvd with its VTU every 50 ms, the record grasp-case-<n>.dat (row by row),
 /// restart dumps every restart.dump_every (the newest two kept; at the end only the end state's), and
-/// the start and end surfaces grasp-case-<n>-{start,end}-{bird,hand}.dat (write_grasp_surfaces).
+/// the surfaces (write_grasp_surfaces) at the start, at 0.7 and 0.9 s and at the end:
+/// grasp-case-<n>-{start,t0.7,t0.9,end}-{bird,hand}.dat.
 /// restart.resume: `out` is a killed run's staging folder; the run goes on from its newest dump.
 GraspRun run_grasp(const GraspCase& c, const Mesh& bird, double density, double end_time, const std::filesystem::path& out,
                    const GraspRestart& restart) {
@@ -537,8 +538,16 @@ GraspRun run_grasp(const GraspCase& c, const Mesh& bird, double density, double 
     const auto& fingers_on_bird = hm.contact("fingers on chicken");
     if (!restart.resume) write_grasp_surfaces(out / (name + "-start"), hm, mesh.nodes);
     std::size_t dumps_seen = 0;
+    // Fig 5-12's instants: the perch at the conveyor's apex (0.7 s) and at the shackling point (0.9 s).
+    std::vector<double> snapshots;
+    for (double t : {kConveyorPeak, kShacklingTime})
+        if (t > solver.time() && t < end_time) snapshots.push_back(t);
     solver.observer = [&](const ExplicitSolver& sv) {
         const NodalState& s = sv.state();
+        if (!snapshots.empty() && sv.time() >= snapshots.front()) {
+            write_grasp_surfaces(out / fmt::format("{}-t{:.1f}", name, snapshots.front()), hm, s.x);
+            snapshots.erase(snapshots.begin());
+        }
         r.time.push_back(sv.time());
         r.theta_b.push_back(chicken::theta_b(s.x[head], s.x[centre]));
         for (std::size_t f = 0; f < tips.size(); ++f) {
