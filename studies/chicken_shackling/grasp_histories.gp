@@ -14,7 +14,7 @@ set xlabel 't [s]'
 set title 'body centre and perch top (Fig 5-11), x and y [mm]'
 set ylabel 'mm'
 plot data u 1:2 w l lw 2 t 'body x', data u 1:3 w l lw 2 t 'body y', \
-     data u 1:5 w l dt 2 t 'perch x', data u 1:6 w l dt 2 t 'perch y', data u 1:8 w l dt 3 t 'paws y'
+     data u 1:5 w l dt 2 t 'perch x', data u 1:6 w l dt 2 t 'perch y', data u 1:8 w l dt 3 lw 2 lc rgb 'black' t 'paws y'
 set title 'bird angle theta_b (Fig 5-13)'
 set ylabel 'deg'
 plot data u 1:10 w l lw 2 t 'ours', '-' w p pt 1 ps 3 lw 2 t 'thesis'
