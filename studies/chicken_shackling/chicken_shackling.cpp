@@ -484,9 +484,10 @@ GraspRun read_grasp_dat(const std::filesystem::path& path, int case_number, doub
         for (std::size_t f = 0; f < 5; ++f) r.tip_y[f].push_back(v[10 + f] * mm), r.stress[f].push_back(v[15 + f] * 1e6);
         r.finger_force.push_back(v[20]);
     }
-    if (r.time.empty() || (std::isfinite(until) && r.time.back() < until - 0.5e-3))
+    if (r.time.empty()) throw InputError(fmt::format("'{}' holds no rows of a grasp record ({} columns each)", path.string(), kGraspDatColumns));
+    if (std::isfinite(until) && r.time.back() < until - 0.5e-3)
         throw InputError(fmt::format("--resume: the record '{}' ends at {:.4f} s, before the restart dump's {:.4f} s", path.string(),
-                                     r.time.empty() ? 0.0 : r.time.back(), until));
+                                     r.time.back(), until));
     return r;
 }
 
