@@ -33,8 +33,12 @@
 //       build/bin/chicken_shackling --grasp <case 1..5> [end time] [--dump-every S] [--resume]
 //                                                  one Step 3 case of Table 5-4; writes grasp-case-<n>.{dat,pvd}
 //                                                  and its surfaces into build/results/chicken_shackling/grasp-case-<n>/;
-//                                                  restart dumps every S (0.025 s): --resume continues a killed run
-//       (--shackle and --grasp take --results DIR for another folder; check/side_run.hpp)
+//                                                  restart dumps every S (0.025 s): --resume continues a killed run;
+//                                                  --friction-decay C: Eq 2-35's c_d [s/m] (0: mu = mu_s), into grasp-case-<n>-cd<C>/
+//       build/bin/chicken_shackling --grasp-verdicts [record ...]
+//                                                  the Step 3 criteria on the five cases' records (default: the side
+//                                                  runs' grasp-case-<n>.dat); writes grasp-verdicts/grasp-verdicts.md
+//       (--shackle, --grasp and --grasp-verdicts take --results DIR for another folder; check/side_run.hpp)
 // Out:  build/results/chicken_shackling/{checks.json, runs.json, table-5-2.md, *.dat, *.vtu,
 //       shackle-{rotating,inverting}.{dat,pvd} with their VTU},
 //       figures/{fig-5-1-bird, fig-5-2-skeleton, fig-5-3-limbs, fig-5-19-bird, fig-5-20-fe-rotating-ramp,
@@ -337,7 +341,9 @@ constexpr double kPerchWidth = 25.0 * mm;  // the tube's diameter [R, reconstruc
 // Bird mesh of the grasp model [R]: Step 4's sizes (20 mm body, 5 mm leg), straight-sided tet10.
 constexpr double kGraspBodySize = 20.0 * mm, kGraspLegSize = 5.0 * mm;
 constexpr double kGraspMassScalingDt = 2.5e-6;  // as Step 4 (selective; the added mass is in runs.json)
-constexpr double kFriction = 0.4;  // Table 5-6 0.4/0.3 with c_d = 0: mu = mu_s (THESIS_CH4_5.md Sec 10 item 1)
+// Table 5-6: mu_s 0.4, mu_d 0.3, with the presumed c_d = 0 Eq 2-35 gives mu = mu_s always (THESIS_CH4_5.md
+// Sec 10 item 1); a decay c_d > 0 (--friction-decay, a sensitivity) lets mu_d act on slipping contacts.
+constexpr double kFrictionStatic = 0.4, kFrictionDynamic = 0.3;
 
 /// Table 5-4: the drum speed [rpm] of each case over 0-0.55, 0.55-0.85, 0.85-1.1 s.
 struct GraspCase {
@@ -356,8 +362,9 @@ Mesh grasp_bird_mesh(const chicken::Chicken& bird) {
     return m;
 }
 
-/// The scene of case `c` (Table 5-4) with the bird mesh `bird` (grasp_bird_mesh) of density `density`.
-hand::Scene grasp_scene(const GraspCase& c, const Mesh& bird, double density) {
+/// The scene of case `c` (Table 5-4) with the bird mesh `bird` (grasp_bird_mesh) of density `density`;
+/// friction by Eq 2-35 with the decay `friction_decay` [s/m] (the thesis's presumed 0: mu = mu_s).
+hand::Scene grasp_scene(const GraspCase& c, const Mesh& bird, double density, double friction_decay) {
     hand::Scene s;
     auto& e = s.hand.fingers.at(4);
     if (e.name != "E") throw InputError("grasp scene: Table 4-1's fifth finger is not E");
@@ -404,7 +411,7 @@ hand::Scene grasp_scene(const GraspCase& c, const Mesh& bird, double density) {
     // runs on: README, Step 3). 0.5 mm is ~50x the bird's travel in one step at 5 m/s.
     shackle.depth = 0.5 * mm;
     s.plates.push_back(shackle);
-    const contact::FrictionLaw mu{kFriction, kFriction, 0.0};
+    const contact::FrictionLaw mu{kFrictionStatic, kFrictionDynamic, friction_decay};
     s.contacts = {{"fingers", "chicken", mu, true}, {"chicken", "perch", mu}, {"chicken", "shackle", mu}, {"chicken", "drum", mu}};
     s.mirror_contact = true;
     s.gravity = Vec3(0.0, -9.81, 0.0);
@@ -504,8 +511,8 @@ struct GraspRestart {
 /// grasp-case-<n>-{start,t0.7,t0.9,end}-{bird,hand}.dat.
 /// restart.resume: `out` is a killed run's staging folder; the run goes on from its newest dump.
 GraspRun run_grasp(const GraspCase& c, const Mesh& bird, double density, double end_time, const std::filesystem::path& out,
-                   const GraspRestart& restart) {
-    hand::HandModel hm(grasp_scene(c, bird, density));
+                   const GraspRestart& restart, double friction_decay) {
+    hand::HandModel hm(grasp_scene(c, bird, density, friction_decay));
     const Mesh& mesh = hm.mesh();
     const int centre = mesh.node_set("body_center-chicken")[0], head = mesh.node_set("head-chicken")[0];
     std::array<int, 5> tips{};
@@ -1415,8 +1422,17 @@ int main(int argc, char** argv) {
                 return 2;
             }
             GraspRestart restart;
+            double friction_decay = 0.0;
             for (int k = 1; k < argc; ++k) {
                 if (std::strcmp(argv[k], "--resume") == 0) restart.resume = true;
+                if (std::strcmp(argv[k], "--friction-decay") == 0) {
+                    const std::vector<std::string> v = operands(k);
+                    friction_decay = v.size() == 1 ? std::atof(v[0].c_str()) : -1.0;
+                    if (!(friction_decay >= 0.0)) {
+                        std::cerr << "chicken_shackling --grasp: --friction-decay takes one c_d >= 0 [s/m]\n";
+                        return 2;
+                    }
+                }
                 if (std::strcmp(argv[k], "--dump-every") == 0) {
                     const std::vector<std::string> v = operands(k);
                     restart.dump_every = v.size() == 1 ? std::atof(v[0].c_str()) : 0.0;
@@ -1428,7 +1444,9 @@ int main(int argc, char** argv) {
             }
             return run_program("chicken_shackling --grasp", [&] {
                 const std::string name = fmt::format("grasp-case-{}", number);
-                io::RunFolder out(check::side_run_folder("chicken_shackling", name, args), "chicken_shackling --grasp",
+                // A sensitivity run gets a folder of its own (its files keep the case's names).
+                const std::string folder = friction_decay > 0.0 ? fmt::format("{}-cd{:g}", name, friction_decay) : name;
+                io::RunFolder out(check::side_run_folder("chicken_shackling", folder, args), "chicken_shackling --grasp",
                                   restart.resume ? io::RunFolder::Leftovers::adopt : io::RunFolder::Leftovers::remove);
                 if (restart.resume && !out.adopted())
                     throw InputError(fmt::format("--resume: no killed run of {} to resume in '{}' (a killed run leaves a "
@@ -1443,7 +1461,7 @@ int main(int argc, char** argv) {
                 // diagnosis in <name>-failure.txt, and the program still exits non-zero.
                 GraspRun r;
                 try {
-                    r = run_grasp(kTable54[number - 1], mesh, density, end, out.staging(), restart);
+                    r = run_grasp(kTable54[number - 1], mesh, density, end, out.staging(), restart, friction_decay);
                 } catch (const SolverError& e) {
                     io::write_text_file(out.staging() / (name + "-failure.txt"), std::string(e.what()) + "\n");
                     out.commit();
