@@ -34,7 +34,9 @@
 //                                                  one Step 3 case of Table 5-4; writes grasp-case-<n>.{dat,pvd}
 //                                                  and its surfaces into build/results/chicken_shackling/grasp-case-<n>/;
 //                                                  restart dumps every S (0.025 s): --resume continues a killed run;
-//                                                  --friction-decay C: Eq 2-35's c_d [s/m] (0: mu = mu_s), into grasp-case-<n>-cd<C>/
+//                                                  sensitivities, each into a folder of its own (grasp-case-<n>-cd<C>-phase<P>/):
+//                                                  --friction-decay C: Eq 2-35's c_d [s/m] (0: mu = mu_s);
+//                                                  --drum-phase P: the drum turned P deg further at t = 0
 //       build/bin/chicken_shackling --grasp-verdicts [record ...]
 //                                                  the Step 3 criteria on the five cases' records (default: the side
 //                                                  runs' grasp-case-<n>.dat); writes grasp-verdicts/grasp-verdicts.md
@@ -362,13 +364,27 @@ Mesh grasp_bird_mesh(const chicken::Chicken& bird) {
     return m;
 }
 
-/// The scene of case `c` (Table 5-4) with the bird mesh `bird` (grasp_bird_mesh) of density `density`;
-/// friction by Eq 2-35 with the decay `friction_decay` [s/m] (the thesis's presumed 0: mu = mu_s).
-hand::Scene grasp_scene(const GraspCase& c, const Mesh& bird, double density, double friction_decay) {
+/// Sensitivity variants of a grasp run (the defaults are the model of the README).
+struct GraspVariant {
+    double friction_decay = 0.0;  // Eq 2-35's c_d [s/m] (the thesis's presumed 0: mu = mu_s)
+    double drum_phase = 0.0;      // [rad] the drum turned this much further at t = 0 (earlier contact)
+    /// The side-run folder's suffix, e.g. "-cd10-phase5".
+    std::string suffix() const {
+        std::string t;
+        if (friction_decay != 0.0) t += fmt::format("-cd{:g}", friction_decay);
+        if (drum_phase != 0.0) t += fmt::format("-phase{:g}", drum_phase / deg);
+        return t;
+    }
+};
+
+/// The scene of case `c` (Table 5-4) with the bird mesh `bird` (grasp_bird_mesh) of density `density`,
+/// and the variant `v`.
+hand::Scene grasp_scene(const GraspCase& c, const Mesh& bird, double density, const GraspVariant& v) {
     hand::Scene s;
     auto& e = s.hand.fingers.at(4);
     if (e.name != "E") throw InputError("grasp scene: Table 4-1's fifth finger is not E");
     e.length = 4.5 * units::inch, e.alpha = 180.0;  // Sec 5.3 / Table 5-6
+    s.hand.drum.initial_angle = v.drum_phase;
     s.hand.drum.omega = Curve::steps({{0.0, c.rpm[0] * units::rpm}, {0.55, c.rpm[1] * units::rpm}, {0.85, c.rpm[2] * units::rpm}},
                                      fmt::format("Table 5-4 case {}", c.number));
     hand::MeshObject o;
@@ -411,7 +427,7 @@ hand::Scene grasp_scene(const GraspCase& c, const Mesh& bird, double density, do
     // runs on: README, Step 3). 0.5 mm is ~50x the bird's travel in one step at 5 m/s.
     shackle.depth = 0.5 * mm;
     s.plates.push_back(shackle);
-    const contact::FrictionLaw mu{kFrictionStatic, kFrictionDynamic, friction_decay};
+    const contact::FrictionLaw mu{kFrictionStatic, kFrictionDynamic, v.friction_decay};
     s.contacts = {{"fingers", "chicken", mu, true}, {"chicken", "perch", mu}, {"chicken", "shackle", mu}, {"chicken", "drum", mu}};
     s.mirror_contact = true;
     s.gravity = Vec3(0.0, -9.81, 0.0);
@@ -511,8 +527,8 @@ struct GraspRestart {
 /// grasp-case-<n>-{start,t0.7,t0.9,end}-{bird,hand}.dat.
 /// restart.resume: `out` is a killed run's staging folder; the run goes on from its newest dump.
 GraspRun run_grasp(const GraspCase& c, const Mesh& bird, double density, double end_time, const std::filesystem::path& out,
-                   const GraspRestart& restart, double friction_decay) {
-    hand::HandModel hm(grasp_scene(c, bird, density, friction_decay));
+                   const GraspRestart& restart, const GraspVariant& variant) {
+    hand::HandModel hm(grasp_scene(c, bird, density, variant));
     const Mesh& mesh = hm.mesh();
     const int centre = mesh.node_set("body_center-chicken")[0], head = mesh.node_set("head-chicken")[0];
     std::array<int, 5> tips{};
@@ -1422,14 +1438,22 @@ int main(int argc, char** argv) {
                 return 2;
             }
             GraspRestart restart;
-            double friction_decay = 0.0;
+            GraspVariant variant;
             for (int k = 1; k < argc; ++k) {
                 if (std::strcmp(argv[k], "--resume") == 0) restart.resume = true;
                 if (std::strcmp(argv[k], "--friction-decay") == 0) {
                     const std::vector<std::string> v = operands(k);
-                    friction_decay = v.size() == 1 ? std::atof(v[0].c_str()) : -1.0;
-                    if (!(friction_decay >= 0.0)) {
+                    variant.friction_decay = v.size() == 1 ? std::atof(v[0].c_str()) : -1.0;
+                    if (!(variant.friction_decay >= 0.0)) {
                         std::cerr << "chicken_shackling --grasp: --friction-decay takes one c_d >= 0 [s/m]\n";
+                        return 2;
+                    }
+                }
+                if (std::strcmp(argv[k], "--drum-phase") == 0) {
+                    const std::vector<std::string> v = operands(k);
+                    variant.drum_phase = v.size() == 1 ? std::atof(v[0].c_str()) * deg : std::nan("");
+                    if (!(std::abs(variant.drum_phase) <= 90.0 * deg)) {
+                        std::cerr << "chicken_shackling --grasp: --drum-phase takes one angle within +-90 [deg]\n";
                         return 2;
                     }
                 }
@@ -1445,7 +1469,7 @@ int main(int argc, char** argv) {
             return run_program("chicken_shackling --grasp", [&] {
                 const std::string name = fmt::format("grasp-case-{}", number);
                 // A sensitivity run gets a folder of its own (its files keep the case's names).
-                const std::string folder = friction_decay > 0.0 ? fmt::format("{}-cd{:g}", name, friction_decay) : name;
+                const std::string folder = name + variant.suffix();
                 io::RunFolder out(check::side_run_folder("chicken_shackling", folder, args), "chicken_shackling --grasp",
                                   restart.resume ? io::RunFolder::Leftovers::adopt : io::RunFolder::Leftovers::remove);
                 if (restart.resume && !out.adopted())
@@ -1461,7 +1485,7 @@ int main(int argc, char** argv) {
                 // diagnosis in <name>-failure.txt, and the program still exits non-zero.
                 GraspRun r;
                 try {
-                    r = run_grasp(kTable54[number - 1], mesh, density, end, out.staging(), restart, friction_decay);
+                    r = run_grasp(kTable54[number - 1], mesh, density, end, out.staging(), restart, variant);
                 } catch (const SolverError& e) {
                     io::write_text_file(out.staging() / (name + "-failure.txt"), std::string(e.what()) + "\n");
                     out.commit();
