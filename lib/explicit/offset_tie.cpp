@@ -18,7 +18,7 @@ OffsetTie::OffsetTie(std::string name, std::vector<int> nodes, std::vector<int> 
     if (nodes_.size() != anchors_.size() || nodes_.empty())
         throw InputError(fmt::format("tie '{}': {} tied nodes and {} anchors (need one anchor per node, at least one)", name_,
                                      nodes_.size(), anchors_.size()));
-    if (options_.engage_time > -std::numeric_limits<double>::infinity())
+    if (engages_late())
         throw InputError(fmt::format("tie '{}': an engage time needs a prescribed motion as the anchor (node anchors hold "
                                      "their reference offsets from the start)", name_));
     for (std::size_t i = 0; i < nodes_.size(); ++i)
@@ -105,7 +105,7 @@ void OffsetTie::add_forces(double t, const NodalState& s, std::vector<Vec3>& for
     if (!holding(t)) return;
     if (motion_) {
         const RigidPose pose = motion_->pose(t);
-        if (options_.engage_time > -std::numeric_limits<double>::infinity() && !engaged_) {
+        if (engages_late() && !engaged_) {
             // Engaging now: hold each node at the motion's material point where it is (X = R^T (x - d)).
             for (std::size_t i = 0; i < nodes_.size(); ++i) offset_[i] = pose.R.transpose() * (s.x[nodes_[i]] - pose.d);
             engaged_ = true;
@@ -136,14 +136,14 @@ void OffsetTie::add_forces(double t, const NodalState& s, std::vector<Vec3>& for
 
 // Only a late engagement has state: whether it happened and the held points it captured.
 void OffsetTie::save_state(io::H5Writer& w, const std::string& prefix) const {
-    if (!(options_.engage_time > -std::numeric_limits<double>::infinity())) return;
+    if (!engages_late()) return;
     std::vector<double> held{engaged_ ? 1.0 : 0.0};
     for (const Vec3& X : offset_) held.insert(held.end(), {X.x(), X.y(), X.z()});
     w.write(prefix + "engaged_and_held_points", held);
 }
 
 void OffsetTie::restore_state(const io::H5Reader& r, const std::string& prefix) {
-    if (!(options_.engage_time > -std::numeric_limits<double>::infinity())) return;
+    if (!engages_late()) return;
     const auto held = r.read(prefix + "engaged_and_held_points");
     if (held.size() != 1 + 3 * offset_.size())
         throw InputError(fmt::format("restart file '{}': tie '{}': {} values in {}engaged_and_held_points, expected {}", r.path().string(),

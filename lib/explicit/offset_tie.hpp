@@ -81,6 +81,8 @@ private:
     std::optional<RigidMotion> motion_;
     OffsetTieOptions options_;
     void check_options() const;
+    /// An engage time was given: the held points are captured then (and are restart state).
+    bool engages_late() const { return options_.engage_time > -std::numeric_limits<double>::infinity(); }
     std::vector<Vec3> offset_;        // X_p - X_a (reference); with a motion anchor X_p (after a late engagement: the held point)
     bool engaged_ = false;            // a late engagement has captured the held points
     std::vector<double> k_, c_;

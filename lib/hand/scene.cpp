@@ -228,11 +228,8 @@ HandModel::HandModel(const Scene& scene) : scene_(scene) {
             const auto plate = std::find_if(scene_.plates.begin(), scene_.plates.end(), [&](const Plate& q) { return q.part == t.plate; });
             if (plate == scene_.plates.end())
                 throw InputError(fmt::format("hand scene: '{}' is tied to plate '{}', which is not in the scene", o.part, t.plate));
-            OffsetTieOptions to = t.options;
-            to.release_time = t.release_time;
-            to.engage_time = t.engage_time;
             auto& tie = model_->add_force_provider(std::make_unique<OffsetTie>(
-                fmt::format("{} {} on {}", o.part, t.node_set, t.plate), msh.node_set(t.node_set + "-" + o.part), plate->motion(), to));
+                fmt::format("{} {} on {}", o.part, t.node_set, t.plate), msh.node_set(t.node_set + "-" + o.part), plate->motion(), t.options));
             ties_[{o.part, t.plate}] = static_cast<const OffsetTie*>(&tie);
         }
     }

@@ -75,16 +75,14 @@ struct Plate {
 };
 
 /// Nodes of a mesh object held to a plate by penalty ties (explicit/offset_tie.hpp: each node held
-/// where the plate's motion carries its starting point) until `release_time`: the chicken's paws
-/// (J1) tied to the perch until the shackling time (thesis Sec 5.3; THESIS_CH4_5.md reconstruction 14).
-/// With an `engage_time` the ties act only from that time on, each node held at the plate's point
-/// where the node is then: the shackle's gripper taking the paws at the shackling time.
+/// where the plate's motion carries its starting point) until `options.release_time`: the chicken's
+/// paws (J1) tied to the perch until the shackling time (thesis Sec 5.3; THESIS_CH4_5.md
+/// reconstruction 14). With an `options.engage_time` the ties act only from that time on, each node
+/// held at the plate's point where the node is then: the shackle's gripper taking the paws.
 struct PlateTie {
     std::string node_set;  // a node set of the object's mesh, as named in MeshObject::mesh
     std::string plate;     // the part name of a scene plate
-    double release_time = std::numeric_limits<double>::infinity();
-    double engage_time = -std::numeric_limits<double>::infinity();
-    OffsetTieOptions options;  // the ties' frequency and damping (release_time and engage_time are this struct's)
+    OffsetTieOptions options;  // frequency, damping, release and engage times
 };
 
 /// A deformable object given as a mesh in the scene's frame: every block of part `part` (tet4,

@@ -403,7 +403,7 @@ TEST(Hand, MeshObjectTiedToAPlateOnAPathLetsGoAtTheReleaseTime) {
         o.material = ElasticMaterial::make("rubber", 6.1e6, 0.49, 1000.0);
         o.initial_velocity = v1;
         o.symmetry_set = "z1";
-        o.ties = {{.node_set = "y0", .plate = "perch", .release_time = t_release}};
+        o.ties = {{.node_set = "y0", .plate = "perch", .options = {.release_time = t_release}}};
         s.meshes.push_back(o);
         Plate perch;
         perch.part = "perch";
