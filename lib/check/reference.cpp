@@ -147,6 +147,9 @@ ReferenceEntry parse_entry(const toml::table& t, const std::filesystem::path& pa
         fail(path, t.source(), "check '" + e.id + "': a known_miss is judged; kind \"shown\" is not");
     if (t.contains("known_miss") && e.known_miss.empty())
         fail(path, t.source(), "check '" + e.id + "': known_miss must say why we miss (a non-empty string)");
+    e.full_only = optional_string(t, "full_only");
+    if (t.contains("full_only") && e.full_only.empty())
+        fail(path, t.source(), "check '" + e.id + "': full_only must say why CTest cannot judge it (a non-empty string)");
     if (const toml::array* h = t["history"].as_array()) {
         for (const auto& item : *h) {
             const toml::table* ht = item.as_table();

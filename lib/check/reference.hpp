@@ -85,6 +85,10 @@ struct ReferenceEntry {
     // For a series: the members (labels) that are known misses; empty means every member.
     std::vector<std::string> known_miss_labels;
     std::vector<HistoryEntry> history;
+    // Judged only by `make all` (--full), with why: the runs it needs cost more than CTest's budget
+    // (chicken_shackling's Step 3: five 1.1 s runs, ~100 CPU minutes). A run without --full lists the
+    // entry as not run (Verdict::NotRun); with --full it is judged like any other.
+    std::string full_only;
     // Where the thesis printed a value of a curve: our curve and the abscissa of each value (one per
     // member of a series), e.g. curve = { file = "fig-3-41.dat", x = "t_ms", y = "twist_deg", at = 5.7 }.
     std::optional<CurveRef> curve;
@@ -96,6 +100,7 @@ struct ReferenceEntry {
     /// Judged against the thesis: every kind but Shown.
     bool judged() const { return kind != Kind::Shown; }
     bool is_known_miss() const { return !known_miss.empty(); }
+    bool is_full_only() const { return !full_only.empty(); }
     /// Whether the series member `label` (or the single value, label empty) is a known miss.
     bool member_is_known_miss(const std::string& label) const;
     /// The label of series member k (the entry's labels, or "1", "2", ...).

@@ -32,6 +32,7 @@ std::string verdict_css(Verdict v) {
         case Verdict::Pass: return "pass";
         case Verdict::KnownMiss: return "miss";
         case Verdict::Shown: return "shown";
+        case Verdict::NotRun: return "notrun";
         case Verdict::Fail:
         case Verdict::UnexpectedPass: return "fail";
     }
@@ -121,10 +122,14 @@ private:
 std::string study_status(bool has_results, const Tally& t) {
     if (!has_results) return "not run";
     if (t.failed() > 0) return "FAILING (" + std::to_string(t.failed()) + " failed)";
-    const int n = t.count(Kind::Reproduction), k = t.count(Kind::Reproduction, Verdict::Pass);
-    if (n == 0) return "no reproduction checks";
-    if (k == n) return "reproduced";
-    return "partly reproduced (" + std::to_string(k) + " of " + std::to_string(n) + ")";
+    // Checks not run (make all only) are left out of the status and named after it.
+    const int not_run = t.count(Verdict::NotRun);
+    const std::string after = not_run > 0 ? "; " + std::to_string(not_run) + " checks not run (make all only)" : "";
+    const int n = t.count(Kind::Reproduction) - t.count(Kind::Reproduction, Verdict::NotRun),
+              k = t.count(Kind::Reproduction, Verdict::Pass);
+    if (n == 0) return "no reproduction checks" + after;
+    if (k == n) return "reproduced" + after;
+    return "partly reproduced (" + std::to_string(k) + " of " + std::to_string(n) + ")" + after;
 }
 
 std::string deviation_text(const CheckRecord& r) {
@@ -237,8 +242,9 @@ int write_report(const ReportInputs& in) {
         // The counts at the top; on the page each is a button that filters the checks to those it counts.
         Block by_verdict{Block::Badges};
         by_verdict.text = "Checks by verdict:";
-        for (Verdict v : {Verdict::Pass, Verdict::KnownMiss, Verdict::Shown})
-            by_verdict.badges.push_back({std::string(verdict_label(v)), all.count(v), "verdict=" + verdict_css(v), verdict_css(v)});
+        for (Verdict v : {Verdict::Pass, Verdict::KnownMiss, Verdict::Shown, Verdict::NotRun})
+            if (v != Verdict::NotRun || all.count(v) > 0)  // not run: only in a report of a run without --full
+                by_verdict.badges.push_back({std::string(verdict_label(v)), all.count(v), "verdict=" + verdict_css(v), verdict_css(v)});
         by_verdict.badges.push_back({"failed", all.failed(), "verdict=fail", "fail"});
         int discrepancies = 0;
         for (const auto& s : studies)
@@ -257,21 +263,26 @@ int write_report(const ReportInputs& in) {
         paragraph("Reproduction: " + std::to_string(all.count(Kind::Reproduction, Verdict::Pass)) + " of " +
                   std::to_string(n) + " thesis results reproduced by our models, " +
                   std::to_string(all.count(Kind::Reproduction, Verdict::KnownMiss)) + " not reproduced (known misses), " +
-                  std::to_string(all.failed(Kind::Reproduction)) + " failed. All " + std::to_string(all.count()) +
-                  " checks by kind and verdict:");
+                  std::to_string(all.failed(Kind::Reproduction)) + " failed" +
+                  (all.count(Verdict::NotRun) > 0
+                       ? "; " + std::to_string(all.count(Verdict::NotRun)) +
+                             " checks were not run: `make all` (--full) judges them, their runs cost more than CTest's budget"
+                       : std::string()) +
+                  ". All " + std::to_string(all.count()) + " checks by kind and verdict:");
     }
     {
         Block kinds{Block::Table};
         kinds.header = {"kind", "checks", "passed", "not reproduced (known misses)", "failed", "shown",
-                        "against a value that follows from the thesis's data"};
+                        "not run (make all only)", "against a value that follows from the thesis's data"};
         for (Kind k : all_kinds())
             kinds.rows.push_back({std::string(kind_name(k)), std::to_string(all.count(k)),
                                   std::to_string(all.count(k, Verdict::Pass)), std::to_string(all.count(k, Verdict::KnownMiss)),
                                   std::to_string(all.failed(k)), std::to_string(all.count(k, Verdict::Shown)),
-                                  std::to_string(all.discrepancies(k))});
+                                  std::to_string(all.count(k, Verdict::NotRun)), std::to_string(all.discrepancies(k))});
         kinds.rows.push_back({"all", std::to_string(all.count()), std::to_string(all.count(Verdict::Pass)),
                               std::to_string(all.count(Verdict::KnownMiss)), std::to_string(all.failed()),
-                              std::to_string(all.count(Verdict::Shown)), std::to_string(all.discrepancies())});
+                              std::to_string(all.count(Verdict::Shown)), std::to_string(all.count(Verdict::NotRun)),
+                              std::to_string(all.discrepancies())});
         doc.push_back(kinds);
     }
 

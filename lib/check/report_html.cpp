@@ -70,6 +70,7 @@ std::string verdict_cell_css(const std::string& label) {
     if (label == "pass") return "pass";
     if (label == "not reproduced") return "miss";
     if (label == "shown") return "shown";
+    if (label.rfind("not run", 0) == 0) return "notrun";
     if (label.rfind("FAIL", 0) == 0) return "fail";
     return "";
 }
@@ -95,7 +96,7 @@ section[hidden]{display:none}
 button.badge,.filters button{border:1px solid #9aa3b5;background:#fff;border-radius:14px;padding:3px 10px;cursor:pointer;font:inherit;font-size:13px}
 button.badge b{margin-left:4px}
 button.badge.pass{background:#dcf3dc}button.badge.fail{background:#f9c9c9}button.badge.miss{background:#fde7c4}
-button.badge.shown{background:#e3e6f7}button.badge.disc{background:#eadcf7}
+button.badge.shown{background:#e3e6f7}button.badge.notrun{background:#eeeeee}button.badge.disc{background:#eadcf7}
 button.active{outline:3px solid #2f6fde}
 .filters{position:sticky;top:0;z-index:5;background:#fff;border:1px solid #d3d8e2;border-radius:8px;padding:6px 10px;margin:10px 0;display:flex;flex-wrap:wrap;gap:8px;align-items:center;font-size:13px;box-shadow:0 2px 6px rgba(0,0,0,.06)}
 .filters select{font:inherit;max-width:11em}
@@ -106,7 +107,7 @@ table{border-collapse:collapse;font-size:13px}
 th,td{border-bottom:1px solid #e1e5ec;border-right:1px solid #eef0f4;padding:4px 7px;vertical-align:top;text-align:left}
 th{background:#eef1f6;position:sticky;top:0}
 tr[hidden]{display:none}
-td.pass{background:#dcf3dc}td.fail{background:#f9c9c9;font-weight:600}td.miss{background:#fde7c4}td.shown{background:#e9ecf8}
+td.pass{background:#dcf3dc}td.fail{background:#f9c9c9;font-weight:600}td.miss{background:#fde7c4}td.shown{background:#e9ecf8}td.notrun{background:#eeeeee;color:#555}
 td.id{white-space:nowrap;font-family:ui-monospace,monospace;font-size:12px}
 td.note{min-width:26em;max-width:60em}
 td.quantity{min-width:12em}
@@ -227,7 +228,8 @@ std::vector<std::string> tag_values(const std::vector<Block>& doc, std::string R
 
 std::string verdict_option(const std::string& css) {
     static const std::map<std::string, std::string> names = {
-        {"pass", "pass"}, {"fail", "failed"}, {"miss", "not reproduced (known miss)"}, {"shown", "shown"}};
+        {"pass", "pass"}, {"fail", "failed"}, {"miss", "not reproduced (known miss)"}, {"shown", "shown"},
+        {"notrun", "not run (make all only)"}};
     const auto it = names.find(css);
     return it == names.end() ? css : it->second;
 }

@@ -51,6 +51,8 @@ nlohmann::json CheckRecord::to_json() const {
     if (!discrepancy.empty()) j["discrepancy"] = discrepancy;
     if (!reason.empty()) j["reason"] = reason;
     if (!known_miss.empty()) j["known_miss"] = known_miss;
+    if (!full_only.empty()) j["full_only"] = full_only;
+    if (not_run) j["not_run"] = true;
     if (!history.empty()) {
         nlohmann::json h = nlohmann::json::array();
         for (const auto& e : history) h.push_back({{"date", e.date}, {"change", e.change}, {"was", e.was}, {"why", e.why}});
@@ -88,6 +90,8 @@ CheckRecord CheckRecord::from_json(const nlohmann::json& j) {
     r.discrepancy = j.value("discrepancy", "");
     r.reason = j.value("reason", "");
     r.known_miss = j.value("known_miss", "");
+    r.full_only = j.value("full_only", "");
+    r.not_run = j.value("not_run", false);
     if (j.contains("history") && j["history"].is_array())
         for (const auto& e : j["history"])
             r.history.push_back({e.value("date", ""), e.value("change", ""), e.value("was", ""), e.value("why", "")});
@@ -100,6 +104,7 @@ CheckRecord CheckRecord::from_json(const nlohmann::json& j) {
 }
 
 Verdict verdict(const CheckRecord& r) {
+    if (r.not_run) return Verdict::NotRun;
     if (!r.passed) return Verdict::Shown;
     if (r.known_miss.empty()) return *r.passed ? Verdict::Pass : Verdict::Fail;
     return *r.passed ? Verdict::UnexpectedPass : Verdict::KnownMiss;
@@ -112,6 +117,7 @@ std::string_view verdict_label(Verdict v) {
         case Verdict::KnownMiss: return "not reproduced";
         case Verdict::UnexpectedPass: return "FAIL: known miss passes";
         case Verdict::Shown: return "shown";
+        case Verdict::NotRun: return "not run (make all only)";
     }
     return "?";
 }
@@ -213,6 +219,14 @@ Study::Study(std::string name, int argc, char** argv) : name_(std::move(name)) {
 
 Study::~Study() = default;
 
+const ReferenceEntry& Study::entry_to_check(std::string_view id) const {
+    const ReferenceEntry& e = reference_.entry(id);
+    if (e.is_full_only() && !full_)
+        throw std::logic_error("check '" + e.id + "' is full_only in " + reference_.path.string() +
+                               ": the study judges it only under --full (its runs cost more than CTest's budget)");
+    return e;
+}
+
 CheckRecord Study::start_record(const ReferenceEntry& e, std::string note) const {
     CheckRecord r;
     r.id = e.id;
@@ -222,6 +236,7 @@ CheckRecord Study::start_record(const ReferenceEntry& e, std::string note) const
     r.basis = e.basis;
     r.kind = e.kind;
     r.known_miss = e.known_miss;
+    r.full_only = e.full_only;
     r.history = e.history;
     r.tolerance = e.tolerance;
     r.reason = e.reason;
@@ -237,7 +252,7 @@ const CheckRecord& Study::add(CheckRecord record) {
 }
 
 const CheckRecord& Study::check(std::string_view id, double reproduced, std::string note) {
-    const ReferenceEntry& e = reference_.entry(id);
+    const ReferenceEntry& e = entry_to_check(id);
     if (e.is_trend() || e.is_series())
         throw std::logic_error("check '" + e.id + "' is not a single number in " + reference_.path.string());
     checked_ids_.push_back(e.id);
@@ -252,7 +267,7 @@ const CheckRecord& Study::check(std::string_view id, double reproduced, std::str
 }
 
 void Study::check(std::string_view id, std::span<const double> reproduced, std::string note) {
-    const ReferenceEntry& e = reference_.entry(id);
+    const ReferenceEntry& e = entry_to_check(id);
     if (!e.is_series()) throw std::logic_error("check '" + e.id + "' is not a series in " + reference_.path.string());
     const auto& thesis = std::get<std::vector<double>>(e.thesis);
     if (thesis.size() != reproduced.size())
@@ -272,14 +287,14 @@ void Study::check(std::string_view id, std::span<const double> reproduced, std::
 }
 
 const CheckRecord& Study::trend(std::string_view id, std::string reproduced, std::string note) {
-    const ReferenceEntry& e = reference_.entry(id);
+    const ReferenceEntry& e = entry_to_check(id);
     if (!e.is_trend()) throw std::logic_error("check '" + e.id + "' is not a trend in " + reference_.path.string());
     const bool holds = reproduced == std::get<std::string>(e.thesis);
     return trend_holds(id, holds, std::move(reproduced), std::move(note));
 }
 
 const CheckRecord& Study::trend_holds(std::string_view id, bool holds, std::string reproduced, std::string note) {
-    const ReferenceEntry& e = reference_.entry(id);
+    const ReferenceEntry& e = entry_to_check(id);
     if (!e.is_trend()) throw std::logic_error("check '" + e.id + "' is not a trend in " + reference_.path.string());
     checked_ids_.push_back(e.id);
     CheckRecord r = start_record(e, std::move(note));
@@ -307,16 +322,23 @@ void Study::plot() {
 }
 
 int Study::finish() {
-    // Every reference entry must have been checked: a study cannot skip a check silently.
+    // Every reference entry must have been checked: a study cannot skip a check silently. A
+    // full_only entry in a run without --full is listed as not run (`make all` judges it).
     for (const auto& e : reference_.entries) {
         if (std::find(checked_ids_.begin(), checked_ids_.end(), e.id) != checked_ids_.end()) continue;
-        CheckRecord r = start_record(e, "the study did not produce this value");
+        const bool not_run = e.is_full_only() && !full_;
+        CheckRecord r = start_record(e, not_run ? "not run here: judged by `make all` (--full) only, because " + e.full_only
+                                                : std::string("the study did not produce this value"));
         if (e.is_trend()) r.thesis = std::get<std::string>(e.thesis);
         else if (e.is_series()) r.thesis = std::get<std::vector<double>>(e.thesis);
         else r.thesis = std::get<double>(e.thesis);
         r.reproduced = nullptr;
-        r.passed = false;
-        r.known_miss.clear();  // a value the study did not produce fails, known miss or not
+        if (not_run) {
+            r.not_run = true;
+        } else {
+            r.passed = false;
+            r.known_miss.clear();  // a value the study did not produce fails, known miss or not
+        }
         add(std::move(r));
     }
 
@@ -356,6 +378,7 @@ int Study::finish() {
     const int failed = count[Verdict::Fail] + count[Verdict::UnexpectedPass];
     std::cout << name_ << ": " << count[Verdict::Pass] << " passed, " << count[Verdict::KnownMiss]
               << " not reproduced (known misses), " << failed << " failed, " << count[Verdict::Shown] << " shown"
+              << (count[Verdict::NotRun] ? fmt::format(", {} not run (make all only)", count[Verdict::NotRun]) : "")
               << (health.empty() ? "" : fmt::format("; {} explicit runs judged on energy health, {} problems", health.size(),
                                                      health_problems.size()))
               << "\n"

@@ -44,6 +44,8 @@ struct CheckRecord {
     std::optional<bool> passed;  // within tolerance (trend: holds); empty for kind "shown"
     std::string note, discrepancy, reason;
     std::string known_miss;      // why this is expected to miss (empty: it is expected to pass)
+    std::string full_only;       // why only `make all` (--full) judges it (ReferenceEntry::full_only)
+    bool not_run = false;        // a full_only check in a run without --full: listed, not judged
     std::vector<HistoryEntry> history;
     std::optional<CurvePoint> on_curve;  // the thesis value is a point of this curve of ours (report plot)
 
@@ -62,9 +64,10 @@ enum class Verdict {
     KnownMiss,       // misses, as its entry's known_miss says: "not reproduced"
     UnexpectedPass,  // a known miss that now passes: fails the study until the entry is updated
     Shown,           // kind "shown": nothing to judge against
+    NotRun,          // a full_only check in a run without --full (CTest): judged by `make all` only
 };
 Verdict verdict(const CheckRecord& r);
-/// "pass", "FAIL", "not reproduced", "FAIL: known miss passes", "shown".
+/// "pass", "FAIL", "not reproduced", "FAIL: known miss passes", "shown", "not run (make all only)".
 std::string_view verdict_label(Verdict v);
 /// Whether the verdict fails the study (Fail, UnexpectedPass).
 bool fails_study(Verdict v);
@@ -93,7 +96,8 @@ public:
     const std::filesystem::path& figures_dir() const { return figures_dir_; }
     const ReferenceFile& reference() const { return reference_; }
     /// --full: also run the thesis-size runs CTest leaves out (`make all` passes it). They may only
-    /// add shown results: checks.json must be the same with and without it.
+    /// add shown results, and judge the reference entries marked full_only: checks.json is the same
+    /// with and without it but for those, which a run without --full lists as not run.
     bool full() const { return full_; }
     /// --jobs N: independent cases run at once (check/cases.hpp); 0 when not given.
     int jobs() const { return jobs_; }
@@ -129,6 +133,8 @@ public:
 
 private:
     const CheckRecord& add(CheckRecord record);
+    /// The entry `id`, refused (std::logic_error) when it is full_only and this run is not --full.
+    const ReferenceEntry& entry_to_check(std::string_view id) const;
     CheckRecord start_record(const ReferenceEntry& e, std::string note) const;
 
     std::string name_;

@@ -202,6 +202,8 @@ TEST(Reference, RefusesBadFilesNamingTheProblem) {
     expect_error(entry + "kind = \"reproduction\"\nthesis = [1, 2]\ntolerance = { rel = 0.1 }\nreason = \"r\"\n"
                          "known_miss = \"m\"\nknown_miss_labels = [\"3\"]\n",
                  "names '3'");
+    expect_error(entry + "kind = \"reproduction\"\nthesis = 1\ntolerance = { rel = 0.1 }\nreason = \"r\"\nfull_only = \"\"\n",
+                 "full_only must say why");
     expect_error("study = \"x\"\n[[check]]\nid = \"a\"\nsource = \"T\"\nquantity = \"q\"\nbasis = \"guess\"\nthesis = 1\n",
                  "basis 'guess'");
     expect_error(entry + "kind = \"consistency\"\nthesis = 1\ntolerance = { rel = 0.1 }\n", "reason");
@@ -301,6 +303,53 @@ TEST(Study, KnownMissesPassTheStudyWhileTheyMissAndFailItWhenTheyPass) {
         EXPECT_EQ(v["table-9-3/modes/m2"], which == 1 ? Verdict::UnexpectedPass : Verdict::KnownMiss);
         EXPECT_EQ(study.finish(), 1);
     }
+}
+
+// A full_only entry: a run without --full lists it as not run (the study still exits 0) and refuses
+// to judge it; a --full run judges it like any other, and fails when it is not produced.
+TEST(Study, FullOnlyChecksAreListedAsNotRunWithoutFullAndJudgedWithIt) {
+    TempDir dir;
+    write(dir.path / "demo.toml", std::string(kReference) + R"toml(
+[[check]]
+id = "fig-9-4/long-run"
+source = "Fig 9-4"
+quantity = "a value of a run longer than CTest's budget"
+basis = "model"
+kind = "reproduction"
+thesis = 5.0
+tolerance = { rel = 0.1 }
+reason = "mesh"
+full_only = "five 20-minute runs"
+)toml");
+    DemoArgs argv(dir.path / "demo.toml", dir.path / "results");
+    {
+        Study study("demo", argv.argc(), argv.data());
+        run_demo_as_expected(study);
+        EXPECT_THROW(study.check("fig-9-4/long-run", 5.0), std::logic_error);
+        EXPECT_EQ(study.finish(), 0);
+        const CheckRecord& r = study.records().back();
+        EXPECT_EQ(r.id, "fig-9-4/long-run");
+        EXPECT_EQ(verdict(r), Verdict::NotRun);
+        EXPECT_FALSE(fails_study(Verdict::NotRun));
+        EXPECT_NE(r.note.find("five 20-minute runs"), std::string::npos) << r.note;
+        std::ifstream in(dir.path / "results" / "checks.json");
+        const auto back = CheckRecord::from_json(nlohmann::json::parse(in).back());
+        EXPECT_EQ(verdict(back), Verdict::NotRun);
+        EXPECT_EQ(back.full_only, "five 20-minute runs");
+    }
+    argv.storage.push_back("--full");
+    argv.argv.clear();
+    for (auto& a : argv.storage) argv.argv.push_back(a.data());
+    for (const double value : {5.2, 7.0}) {
+        Study study("demo", argv.argc(), argv.data());
+        run_demo_as_expected(study);
+        EXPECT_EQ(verdict(study.check("fig-9-4/long-run", value)), value == 5.2 ? Verdict::Pass : Verdict::Fail);
+        EXPECT_EQ(study.finish(), value == 5.2 ? 0 : 1);
+    }
+    Study forgot("demo", argv.argc(), argv.data());
+    run_demo_as_expected(forgot);
+    EXPECT_EQ(forgot.finish(), 1);  // --full must produce it
+    EXPECT_EQ(verdict(forgot.records().back()), Verdict::Fail);
 }
 
 TEST(Verdict, OneClassification) {
