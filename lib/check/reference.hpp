@@ -124,6 +124,10 @@ struct ReferenceFile {
     std::filesystem::path path;
 };
 
+/// reference/<study>.toml of the source tree this program was built from (a study's default
+/// reference file, whatever the current directory).
+std::filesystem::path default_reference_path(std::string_view study);
+
 /// Reads and validates a reference file; throws InputError naming the file, line and field.
 ReferenceFile load_reference(const std::filesystem::path& path);
 

@@ -167,7 +167,7 @@ std::string join_joined(const std::string& a, const std::string& b) {
 Study::Study(std::string name, int argc, char** argv) : name_(std::move(name)) {
     source_dir_ = FEM_SOURCE_DIR;
     results_dir_ = std::filesystem::path(FEM_RESULTS_DIR) / name_;
-    std::filesystem::path reference_path = source_dir_ / "reference" / (name_ + ".toml");
+    std::filesystem::path reference_path = default_reference_path(name_);
     for (int i = 1; i < argc; ++i) {
         const std::string arg = argv[i];
         auto value = [&]() -> std::string {
@@ -218,6 +218,10 @@ Study::Study(std::string name, int argc, char** argv) : name_(std::move(name)) {
 }
 
 Study::~Study() = default;
+
+std::filesystem::path default_reference_path(std::string_view study) {
+    return std::filesystem::path(FEM_SOURCE_DIR) / "reference" / (std::string(study) + ".toml");
+}
 
 const ReferenceEntry& Study::entry_to_check(std::string_view id) const {
     const ReferenceEntry& e = reference_.entry(id);
