@@ -1268,10 +1268,11 @@ void run(check::Study& study) {
                                                          {"out", (figures / "step3-grasp-case-4-histories.png").string()},
                                                          {"label", "Step 3, Case 4 (45/20/40 rpm, Table 5-4): our half model"}});
             // Fig 5-12's instants, from the symmetry plane (the half bird's cut shows the leg and the shackle).
-            for (const auto& [when, file] : {std::pair{"t0.7", "t0.7"}, std::pair{"t0.9", "t0.9"}, std::pair{"end", "t1.1"}})
-                io::run_gnuplot(dir / "grasp.gp", {{"data", (out / fmt::format("grasp-case-4-{}", when)).string()},
-                                                   {"out", (figures / fmt::format("step3-grasp-case-4-{}.png", file)).string()},
-                                                   {"label", fmt::format("Case 4 at {} s (Table 5-4; from the symmetry plane)", file + 1)},
+            // (surfaces written by run_grasp: grasp-case-4-t0.7, -t0.9, and -end at 1.1 s)
+            for (const auto& [surfaces, seconds] : {std::pair{"t0.7", "0.7"}, std::pair{"t0.9", "0.9"}, std::pair{"end", "1.1"}})
+                io::run_gnuplot(dir / "grasp.gp", {{"data", (out / fmt::format("grasp-case-4-{}", surfaces)).string()},
+                                                   {"out", (figures / fmt::format("step3-grasp-case-4-t{}.png", seconds)).string()},
+                                                   {"label", fmt::format("Case 4 at {} s (Table 5-4; from the symmetry plane)", seconds)},
                                                    {"azimuth", "160"}});
         }
     }
