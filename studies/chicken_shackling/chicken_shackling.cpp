@@ -1244,7 +1244,7 @@ void run(check::Study& study) {
     // not run). Each case writes grasp-case-<n>.{dat,pvd}, its VTU and 3D-view surfaces into the
     // results folder; the cases run at once on the cores (check::run_cases).
     if (study.full()) {
-        const double density = chicken::density_for_mass(birdA);
+        const double density = chicken::density_for_mass(birdA, propsA.volume);  // Step 1's volume, as Step 4
         const Mesh mesh = grasp_bird_mesh(birdA);  // Gmsh: here, on this thread, before the cases start
         const std::vector<GraspRun> grasp_runs = check::run_cases<GraspRun>(
             study, 5, [&](int k) { return run_grasp(kTable54[k], mesh, density, kGraspEnd, out, GraspRestart{}, GraspVariant{}); },
