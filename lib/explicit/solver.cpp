@@ -1088,6 +1088,15 @@ void ExplicitSolver::restart_dumps() {
     restart_files_.push_back(path);
 }
 
+double ExplicitSolver::restart_time(const std::filesystem::path& path) {
+    const io::H5Reader r(path);
+    if (r.attribute_string("/", "format") != kRestartFormat)
+        throw InputError(fmt::format("restart file '{}' is not an explicit solver restart file ({})", path.string(), kRestartFormat));
+    const std::vector<double> t = r.read("solver/t");
+    if (t.size() != 1) throw InputError(fmt::format("restart file '{}': solver/t is not a number", path.string()));
+    return t[0];
+}
+
 void ExplicitSolver::write_restart(const std::filesystem::path& path) const {
     io::H5Writer w(path);
     w.attribute("/", "format", kRestartFormat);
@@ -1334,14 +1343,18 @@ void ExplicitSolver::restore(const std::filesystem::path& path) {
     } else {
         next_history_ = t_;  // a new history, from the restart on
     }
-    // The VTU series continues when it is the same file.
+    // The VTU series continues when it is the same file, or, for a branch of a shared start
+    // (vtu_series_from_restart), from the dumping run's files, named relative to this PVD.
     if (pvd_) {
         const std::filesystem::path dumped = r.attribute_string("/", "pvd_path");
-        if (!dumped.empty() && std::filesystem::absolute(dumped) == std::filesystem::absolute(opt_.pvd_path)) {
+        const bool same = !dumped.empty() && std::filesystem::absolute(dumped) == std::filesystem::absolute(opt_.pvd_path);
+        if (same || (!dumped.empty() && opt_.vtu_series_from_restart)) {
             const auto times = r.read("pvd/time");
             const auto files = split_lines(r.attribute_string("/", "pvd_files"));
+            const std::filesystem::path from = dumped.parent_path(), here = std::filesystem::absolute(opt_.pvd_path).parent_path();
             std::vector<std::pair<double, std::string>> entries;
-            for (std::size_t i = 0; i < times.size() && i < files.size(); ++i) entries.push_back({times[i], files[i]});
+            for (std::size_t i = 0; i < times.size() && i < files.size(); ++i)
+                entries.push_back({times[i], same ? files[i] : (from / files[i]).lexically_relative(here).generic_string()});
             pvd_->resume(std::move(entries));
         } else {
             next_vtu_ = t_;

@@ -247,6 +247,12 @@ struct ExplicitOptions {
     double restart_interval = 0.0;
     std::filesystem::path restart_dir;
     std::filesystem::path restart_from;
+    // A branch of a shared start: restart_from is another run's dump (cases that run alike until a
+    // switch, e.g. a drum speed that changes at 0.55 s in some of them, share the run up to it), and
+    // this run's PVD lists that run's VTU files written before the dump (paths relative to this
+    // PVD's folder), then its own, numbered on from them: the series covers the whole run, as an
+    // uninterrupted run's would. false: a restart from another PVD's dump starts a series there.
+    bool vtu_series_from_restart = false;
     // When the observer runs: < 0 at every history sample (the default); 0 every cycle; > 0 every
     // observer_interval [s] (the first cycle at or after each), whatever the history interval. So an
     // observer can watch every cycle without the history storing every cycle.
@@ -417,6 +423,8 @@ public:
     /// Removes all but the newest `keep` restart files of run `name` in `dir` (a long run keeps
     /// only what a resumption needs; the newest is complete: each is written under a temporary name).
     static void remove_older_restarts(const std::filesystem::path& dir, std::string_view name, std::size_t keep);
+    /// The model time a restart file holds (InputError when `path` is not one).
+    static double restart_time(const std::filesystem::path& path);
     /// Writes the complete state to `path` (what the restart options do at their times).
     void write_restart(const std::filesystem::path& path) const;
     /// Largest element von Mises stress of part `part` at the last force evaluation (0 for a part

@@ -11,6 +11,8 @@
 
 #include <cstring>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 
 #include "core/error.hpp"
 #include "explicit_test_support.hpp"
@@ -219,5 +221,93 @@ TEST(ExplicitRestart, FullDeckRestartMayChangeTheLoads) {
     ExplicitOptions bad = opts(T);
     bad.restart_interval = 1e-3;
     EXPECT_THROW(ExplicitSolver(*bar(false, {}), bad), InputError);
+    fs::remove_all(dir);
+}
+
+// A branch of a shared start (ExplicitOptions::vtu_series_from_restart): the bar runs without gravity
+// to T/2 and dumps (the shared start, its own folder); a branch restarts from that dump with gravity
+// into another folder. The branch ends bit for bit where one uninterrupted run with gravity from T/2
+// ends, and its PVD lists the start's VTU files written before the dump (relative paths into the
+// start's folder), then its own, numbered on from them, each the uninterrupted run's file byte for
+// byte. Without the option the branch's series starts at the restart.
+TEST(ExplicitRestart, BranchOfASharedStartContinuesItsVtuSeries) {
+    const double T = 4e-3;
+    const fs::path dir = fs::temp_directory_path() / "fem_explicit_restart_branch";
+    fs::remove_all(dir);
+    const Mesh mesh = box_hex8(0.1, 0.02, 0.02, 5, 1, 1, "bar");
+    const auto rubber = ElasticMaterial::make("rubber", 6.1e6, 0.45, 1000);
+    auto bar = [&](const Curve& gravity_on) {
+        auto m = std::make_unique<ExplicitModel>(mesh);
+        m->add_hex8("bar", rubber);
+        m->fix(mesh.node_set("x0"));
+        m->add_nodal_force(mesh.node_set("x1"), Vec3(0, 0.5, 0), Curve::pulse(0.0, 1e-3));
+        m->set_gravity(Vec3(0, 0, -9.81 * 50), gravity_on);
+        return m;
+    };
+    auto opts = [&](double end, const fs::path& pvd) {
+        ExplicitOptions o = test::quiet(end);
+        o.name = "bar";
+        o.pvd_path = pvd;
+        o.vtu_interval = 0.5e-3;
+        return o;
+    };
+    auto read_file = [](const fs::path& p) {
+        std::ifstream in(p, std::ios::binary);
+        return std::string(std::istreambuf_iterator<char>(in), {});
+    };
+    // One run, gravity switched on at T/2 (the curve's step: zero before, one after).
+    auto whole = bar(Curve::step(0.5 * T));
+    ExplicitSolver s1(*whole, opts(T, dir / "whole" / "bar.pvd"));
+    s1.run();
+    // The shared start: no gravity, dumped at T/2.
+    auto first = bar(Curve::constant(0.0));
+    ExplicitOptions o2 = opts(0.5 * T, dir / "start" / "start.pvd");
+    o2.restart_times = {0.5 * T};
+    o2.restart_dir = dir / "start";
+    ExplicitSolver s2(*first, o2);
+    s2.run();
+    ASSERT_EQ(s2.restart_files().size(), 1u);
+    const fs::path dump = s2.restart_files()[0];
+    EXPECT_EQ(ExplicitSolver::restart_time(dump), s2.time());
+    EXPECT_THROW(ExplicitSolver::restart_time(dir / "start" / "start_0000.vtu"), std::exception);
+    // The branch: gravity on from the restart.
+    auto second = bar(Curve::constant(1.0));
+    ExplicitOptions o3 = opts(T, dir / "branch" / "branch.pvd");
+    o3.restart_from = dump;
+    o3.vtu_series_from_restart = true;
+    fs::create_directories(dir / "branch");
+    ExplicitSolver s3(*second, o3);
+    s3.run();
+    EXPECT_TRUE(same_bits(s3.state().x, s1.state().x));
+    EXPECT_TRUE(same_bits(s3.state().v, s1.state().v));
+    // The series: the start's files before the dump, then the branch's own.
+    const std::string pvd = read_file(dir / "branch" / "branch.pvd");
+    const std::string whole_pvd = read_file(dir / "whole" / "bar.pvd");
+    int listed = 0, from_start = 0;
+    for (std::size_t at = pvd.find("file=\""); at != std::string::npos; at = pvd.find("file=\"", at + 1)) {
+        const std::string file = pvd.substr(at + 6, pvd.find('"', at + 6) - at - 6);
+        const std::string index = file.substr(file.size() - 8, 4);  // NNNN of <stem>_NNNN.vtu
+        if (file.rfind("../start/start_", 0) == 0) ++from_start;
+        else EXPECT_EQ(file, "branch_" + index + ".vtu");
+        ASSERT_TRUE(fs::exists(dir / "branch" / file)) << file;
+        EXPECT_EQ(read_file(dir / "branch" / file), read_file(dir / "whole" / ("bar_" + index + ".vtu"))) << file;
+        ++listed;
+    }
+    // 0, 0.5, 1.0, 1.5 ms (and 2 ms when its cycle wrote the VTU before the dump): the start's files
+    EXPECT_GE(from_start, 4);
+    EXPECT_LE(from_start, 5);
+    int whole_listed = 0;
+    for (std::size_t at = whole_pvd.find("file=\""); at != std::string::npos; at = whole_pvd.find("file=\"", at + 1)) ++whole_listed;
+    EXPECT_EQ(listed, whole_listed);
+    // Without the option: the series starts at the restart.
+    auto third = bar(Curve::constant(1.0));
+    ExplicitOptions o4 = opts(T, dir / "alone" / "alone.pvd");
+    o4.restart_from = dump;
+    fs::create_directories(dir / "alone");
+    ExplicitSolver s4(*third, o4);
+    s4.run();
+    const std::string alone = read_file(dir / "alone" / "alone.pvd");
+    EXPECT_TRUE(fs::exists(dir / "alone" / "alone_0000.vtu"));
+    EXPECT_EQ(alone.find("start_"), std::string::npos) << alone;
     fs::remove_all(dir);
 }
