@@ -30,6 +30,9 @@ struct ContactInterface::Pass {
         Vec3 normal = Vec3::Zero();     // the contact normal of the last cycle (side applied)
     };
     std::vector<History> history;       // per slave node
+    // ContactOptions::track_approach_side: per slave node, the side of the master surface it was last
+    // seen on (+1 in front or in contact, -1 behind, 0 not yet seen near a face).
+    std::vector<signed char> approach;
     // ContactOptions::skip_far_candidates: each master segment's box of this evaluation (built on
     // first use: `stamp` counts the evaluations), and the candidates phase 1 left unprojected.
     std::vector<SegmentBox> box;
@@ -88,6 +91,7 @@ struct ContactInterface::Pass {
         }
         master_nodes.assign(nodes.begin(), nodes.end());
         history.resize(s.nodes.size());
+        if (o.track_approach_side) approach.assign(s.nodes.size(), 0);
         box.resize(m.segments.size());
         box_stamp.assign(m.segments.size(), -1);
         edge_tolerance = o.edge_tolerance;
@@ -118,6 +122,13 @@ ContactInterface::ContactInterface(std::string name, ContactSurface slave, Conta
             throw InputError(fmt::format("contact '{}': two-way contact needs faces and nodes on both sides", name_));
         passes_.push_back(std::make_unique<Pass>(*master_, *slave_, false, opt_));
     }
+    if (opt_.track_approach_side)
+        for (const auto& P : passes_)
+            for (const auto& seg : P->master->segments)
+                if (seg.two_sided)
+                    throw InputError(fmt::format("contact '{}': track_approach_side needs one-sided master faces; '{}' has "
+                                                 "two-sided shell faces (they keep their own side)",
+                                                 name_, P->master->name));
 }
 
 void ContactInterface::validate_options() const {
@@ -192,8 +203,12 @@ void ContactInterface::evaluate(std::span<const Vec3> x, std::span<const Vec3> v
             const std::span<const int> candidates = P.list.candidates(static_cast<int>(i));
             if (candidates.empty()) {  // most nodes, most cycles: no segment near, nothing to project
                 if (hist.segment >= 0) hist = {};  // separated (a node out of contact has the default)
-                continue;
+                continue;                          // (its approach side stays what it was)
             }
+            // track_approach_side: what the projections show of the node's side (see the update below).
+            signed char* approach = P.approach.empty() ? nullptr : &P.approach[i];
+            bool front_on_face = false, behind_on_face = false;
+            double nearest_distance = std::numeric_limits<double>::infinity(), nearest_gap = 0.0;
             int best = -1, best_side = 0;
             Projection bp;
             // Outside veto, two strengths. A face the node projects onto from in front vetoes any
@@ -234,8 +249,15 @@ void ContactInterface::evaluate(std::span<const Vec3> x, std::span<const Vec3> v
                     nearest_front = std::min(nearest_front, pr.gap);
                 else if (pr.gap > 1e-3 * P.size[s] && pr.tangential_offset <= opt_.edge_tolerance * P.size[s])
                     nearest_front_beside = std::min(nearest_front_beside, pr.gap);
+                if (approach) {
+                    if (pr.tangential_offset <= opt_.edge_tolerance * P.size[s]) {
+                        if (pr.gap >= -tiny) front_on_face = true;  // (on the face, within round-off: in front)
+                        if (pr.gap < -tiny) behind_on_face = true;
+                    }
+                    if (pr.distance < nearest_distance) nearest_distance = pr.distance, nearest_gap = pr.gap;
+                }
                 if (!may_capture || !(pr.gap < -tiny) || -pr.gap > P.depth[s] ||
-                    pr.tangential_offset > opt_.edge_tolerance * P.size[s])
+                    pr.tangential_offset > opt_.edge_tolerance * P.size[s] || (approach && *approach < 0))
                     return;
                 const bool kept = s == hist.segment;
                 if (best < 0 || kept || (best != hist.segment && pr.distance < bp.distance)) {
@@ -244,7 +266,7 @@ void ContactInterface::evaluate(std::span<const Vec3> x, std::span<const Vec3> v
                     bp = pr;
                 }
             };
-            if (!opt_.skip_far_candidates) {
+            if (!opt_.skip_far_candidates || approach) {
                 for (int s : candidates) consider(s, true);
             } else {
                 // The same choice with fewer projections (same segment, same projection, same veto:
@@ -277,6 +299,14 @@ void ContactInterface::evaluate(std::span<const Vec3> x, std::span<const Vec3> v
             if (best >= 0 && (nearest_front < -bp.gap ||
                               (bp.tangential_offset > 1e-9 * P.size[best] && nearest_front_beside < -bp.gap)))
                 best = -1;
+            if (approach) {
+                if (best >= 0 || front_on_face) *approach = 1;  // in contact, or in front of a face it projects onto
+                else if (behind_on_face) {
+                    if (*approach == 0) *approach = -1;  // first seen behind a face, not captured: came from behind
+                } else if (std::isfinite(nearest_distance)) {
+                    *approach = nearest_gap >= 0.0 ? 1 : -1;  // beside every face: the nearest face's plane decides
+                }
+            }
             if (best < 0) {
                 hist = {};  // separated: the friction spring relaxes
                 continue;
@@ -347,6 +377,7 @@ void ContactInterface::save_state(io::H5Writer& w, const std::string& prefix) co
         }
         w.write(pp + "friction_force", force);
         w.write_ints(pp + "segment", segment);
+        if (!P.approach.empty()) w.write_ints(pp + "approach", std::vector<long long>(P.approach.begin(), P.approach.end()));
     }
     // The last evaluation's contact points (outputs: an observer reads them before the next cycle).
     Eigen::MatrixXd pts(points_.size(), 17);
@@ -382,6 +413,14 @@ void ContactInterface::restore_state(const io::H5Reader& r, const std::string& p
             P.history[i].segment = static_cast<int>(segment[i]);
             if (P.history[i].segment >= static_cast<int>(P.master->segments.size()))
                 throw bad(fmt::format("pass {}: segment {} of the file is not a master segment here", p, segment[i]));
+        }
+        if (!P.approach.empty()) {
+            if (!r.has(pp + "approach"))
+                throw bad(fmt::format("pass {} has no approach sides in the file (written without track_approach_side)", p));
+            const auto approach = r.read_ints(pp + "approach");
+            if (approach.size() != P.approach.size())
+                throw bad(fmt::format("pass {} has {} approach sides in the file, {} here", p, approach.size(), P.approach.size()));
+            for (std::size_t i = 0; i < approach.size(); ++i) P.approach[i] = static_cast<signed char>(approach[i]);
         }
         P.list.restore_state(r, pp + "search/");
     }

@@ -53,6 +53,18 @@ struct ContactOptions {
     // rule out a capture or an outside veto. The same forces to the last bit as projecting every
     // candidate (false: the reference, for tests).
     bool skip_far_candidates = true;
+    // Capture only nodes that reached the master surface from in front (one-sided master faces, e.g.
+    // a rigid plate; a shell with thickness has its own side rule). Each slave node remembers the
+    // side it was last seen on: in front (it projected onto a face from in front, or was in
+    // contact), or behind (first seen behind a face it projects onto without being captured, or
+    // beside every face and behind the nearest one's plane: it came round an edge or fell past one).
+    // A node seen behind is not captured, whatever its depth, until it is in front again; a node not
+    // yet seen near a face follows the depth rule alone. So the depth limit can be the master's real
+    // thickness: a node that enters a thin plate's outline from behind its edge (a leg crossing the
+    // plane of a shackle plate) is not shot up by the penalty spring, and a node pressed into the
+    // plate is held up to that depth. Every candidate is projected (skip_far_candidates does not
+    // apply). InputError for a master with two-sided segments.
+    bool track_approach_side = false;
 };
 
 /// An active contact: slave node `node` against master segment `segment` of the pass (`pass` 0:

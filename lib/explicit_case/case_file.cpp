@@ -207,17 +207,19 @@ RigidPart read_rigid_part(const TomlTable& t, bool hand_case) {
         t.fail("mesh", fmt::format("a case with [hand] takes translating plates as its rigid parts (the drum is the "
                                    "hand's), got '{}'",
                                    r.mesh));
-    std::vector<std::string> keys{"name", "mesh", "depth", "motion"};
+    std::vector<std::string> keys{"name", "mesh", "depth", "track_approach_side", "motion"};
     if (r.mesh == "plate") keys.insert(keys.end(), {"centre", "u", "v", "segments"});
     if (r.mesh == "box") keys.insert(keys.end(), {"size", "origin", "elements"});
     if (r.mesh == "drum") keys.insert(keys.end(), {"centre", "levels", "segments"});
     if (r.mesh == "gmsh") keys.push_back("file");
     refuse_keys_outside(t, keys, fmt::format("a '{}' rigid part", r.mesh));
     r.depth = t.real_or("depth", 0.03, Range::positive());
+    r.track_approach_side = t.boolean_or("track_approach_side", false);
     if (r.mesh == "plate") {
         hand::Plate& q = r.plate;
         q.part = r.name;
         q.depth = r.depth;
+        q.track_approach_side = r.track_approach_side;
         q.centre = vec3(t, "centre");
         q.u = vec3(t, "u");
         q.v = vec3(t, "v");

@@ -96,6 +96,7 @@ struct RigidPart {
     int drum_segments = 48;
     std::filesystem::path file;
     double depth = 0.03;           // deepest penetration taken as contact [m]
+    bool track_approach_side = false;  // capture only nodes that come from in front (contact.hpp)
     /// The motion, composed in the order of the [[rigid_part.motion]] entries (the first innermost).
     RigidMotion motion;
     int line = 0;

@@ -249,6 +249,7 @@ CaseModel::CaseModel(const ExplicitCase& c) {
             const auto rigid = std::find_if(c.rigid_parts.begin(), c.rigid_parts.end(), [&](const RigidPart& r) { return r.name == ct.master; });
             if (rigid != c.rigid_parts.end()) {
                 auto master = contact::ContactSurface::rigid_part(msh, ct.master, rigid->depth);
+                opt.track_approach_side = rigid->track_approach_side;
                 contact::add_contact(model, contact::ContactInterface(pairs_[k], std::move(slave), std::move(master), opt));
             } else {
                 opt.two_way = ct.two_way;

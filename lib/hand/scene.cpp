@@ -267,6 +267,7 @@ HandModel::HandModel(const Scene& scene) : scene_(scene) {
         } else if (auto it = std::find_if(scene_.plates.begin(), scene_.plates.end(), [&](const Plate& q) { return q.part == c.master; });
                    it != scene_.plates.end()) {
             auto r = contact::ContactSurface::rigid_part(msh, it->part, it->depth);
+            opt.track_approach_side = it->track_approach_side;
             p.contact = &contact::add_contact(*model_, contact::ContactInterface(name, std::move(slave), std::move(r), opt));
         } else if (material.count(c.master) || c.master == "fingers") {
             auto master = surface(c.master);

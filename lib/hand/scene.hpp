@@ -67,6 +67,12 @@ struct Plate {
     /// deeper limit (the first sessions' 30 mm) lets a node falling past the edge, within the edge
     /// tolerance and below the top, be shot up by the penalty spring (football_sweep README).
     double depth = 0.002;
+    /// Capture only nodes that reach the plate from in front (contact::ContactOptions::
+    /// track_approach_side): a node that enters the plate's outline from behind an edge (a leg
+    /// crossing the plane of the shackle plate near its end) or was pushed through deeper than
+    /// `depth` is left alone until it is in front again. Then `depth` can be the plate's thickness
+    /// without nodes past the edge being shot up.
+    bool track_approach_side = false;
     /// A motion other than one direction with a speed schedule (then `direction` and `speed` are
     /// not used): the perch of Ch 5 on the conveyor inclined, then declined
     /// (RigidMotion::piecewise_translation). A scene with one cannot be seen_from a later time.

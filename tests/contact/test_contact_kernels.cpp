@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <filesystem>
 #include <functional>
 #include <cmath>
 #include <numbers>
@@ -12,6 +13,7 @@
 #include <set>
 
 #include "contact/contact.hpp"
+#include "io/hdf5.hpp"
 #include "explicit/rigid_motion.hpp"
 #include "core/error.hpp"
 #include "../test_materials.hpp"
@@ -807,4 +809,115 @@ TEST(ContactPenalty, SkippingFarCandidatesChangesNothing) {
         EXPECT_GT(all.dissipated_energy(), 0.0) << sc.name << ": and slide with friction";
         EXPECT_LT(skip.projections(), all.projections()) << sc.name;
     }
+}
+
+namespace {
+// A thin rigid plate 0.1 x 0.1 m at y = 0, its contact side +y (u x v), depth limit 5 mm (its
+// "thickness"), and a 10 mm rubber probe cube; the probe's bottom nodes are the ones that matter.
+struct PlateAndProbe {
+    Mesh m;
+    std::vector<int> bottom;  // the probe's nodes at its lowest y
+    PlateAndProbe(const Vec3& probe_corner) {
+        m = parallelogram_quad4(Vec3::Zero(), Vec3(0.1, 0, 0), Vec3(0, 0, -0.1), 2, 2, "plate");
+        Mesh probe = box_hex8(0.01, 0.01, 0.01, 1, 1, 1, "probe");
+        probe.translate(probe_corner);
+        const int first = m.node_count();
+        m.append(probe);
+        for (int i = first; i < m.node_count(); ++i)
+            if (m.nodes[i].y() == probe_corner.y()) bottom.push_back(i);
+    }
+    ContactInterface contact(bool track) const {
+        ContactOptions o;
+        o.edge_tolerance = 0.05;
+        o.track_approach_side = track;
+        return ContactInterface(track ? "tracked" : "depth rule", ContactSurface::from_part(m, "probe", kTable31Rubber),
+                                ContactSurface::rigid_part(m, "plate", 5e-3), o);
+    }
+    // The probe moved by d, evaluated: the number of contacts.
+    std::size_t contacts_at(ContactInterface& ci, const Vec3& d) const {
+        std::vector<Vec3> x = m.nodes, f(m.node_count(), Vec3::Zero());
+        for (int i = m.node_count() - 8; i < m.node_count(); ++i) x[i] += d;
+        ci.evaluate(x, {}, 0.0, 0.0, f);
+        return ci.contacts().size();
+    }
+};
+}  // namespace
+
+// ContactOptions::track_approach_side. A probe 3 mm below a thin plate's plane, beyond its edge
+// (x = 0.05 m), slides under the plate (a leg crossing the plane of the shackle plate near its
+// gripper end). The depth rule captures its bottom nodes as soon as they are inside the outline (3 mm
+// behind the face, within the 5 mm depth: the spring would shoot them up through the plate); tracked,
+// they came from behind and are never captured.
+TEST(ContactTrackedSide, NodeComingRoundTheEdgeFromBehindIsNotCaptured) {
+    const PlateAndProbe s(Vec3(0.056, -0.003, -0.005));
+    ContactInterface depth_rule = s.contact(false), tracked = s.contact(true);
+    std::size_t captured_by_depth_rule = 0;
+    for (int k = 0; k <= 30; ++k) {  // 1 mm per evaluation towards -x: 30 mm under the plate at the end
+        const Vec3 d(-1e-3 * k, 0, 0);
+        captured_by_depth_rule = std::max(captured_by_depth_rule, s.contacts_at(depth_rule, d));
+        EXPECT_EQ(s.contacts_at(tracked, d), 0u) << "at " << k << " mm";
+    }
+    EXPECT_EQ(captured_by_depth_rule, 4u);  // the four bottom nodes, once inside the outline
+}
+
+// A probe pressed into the plate from in front is held as by the depth rule, the same forces at
+// every depth down to the limit; pushed beyond the limit it is let go (both rules), and coming back
+// within it, tracked, it is still the node that came from in front: captured again. A probe that starts 1 mm into the
+// plate (not yet seen near a face) follows the depth rule: captured.
+TEST(ContactTrackedSide, NodePressedFromInFrontIsHeldAsByTheDepthRule) {
+    const PlateAndProbe s(Vec3(-0.005, 0.002, -0.005));
+    ContactInterface depth_rule = s.contact(false), tracked = s.contact(true);
+    for (double y : {0.0, -1e-3, -2e-3, -3e-3, -4e-3, -4.9e-3, -6e-3, -4e-3}) {  // the probe's bottom, from 2 mm above
+        const Vec3 d(0, y - 0.002, 0);
+        const std::size_t n = s.contacts_at(depth_rule, d);
+        EXPECT_EQ(s.contacts_at(tracked, d), n) << "bottom at " << y;
+        EXPECT_EQ(n, y < 0.0 && y > -5e-3 ? 4u : 0u) << "bottom at " << y;
+        if (n == 4u)
+            for (std::size_t c = 0; c < 4; ++c) {
+                EXPECT_EQ(tracked.contacts()[c].gap, depth_rule.contacts()[c].gap);
+                EXPECT_EQ(tracked.contacts()[c].normal_force, depth_rule.contacts()[c].normal_force);
+            }
+    }
+    const PlateAndProbe start_inside(Vec3(-0.005, -0.001, -0.005));
+    ContactInterface first_seen_inside = start_inside.contact(true);
+    EXPECT_EQ(start_inside.contacts_at(first_seen_inside, Vec3::Zero()), 4u);
+}
+
+// The side each node was last seen on is part of the interface's restart state: the probe of the
+// first test, halfway under the plate, saved and restored into a fresh interface, is still not
+// captured; a fresh interface that never saw it come from behind captures it (the depth rule for a
+// node not yet seen); a tracked interface refuses a file written without the sides. A master with
+// two-sided shell faces is refused.
+TEST(ContactTrackedSide, ApproachSidesAreRestartStateAndTwoSidedMastersAreRefused) {
+    const PlateAndProbe s(Vec3(0.056, -0.003, -0.005));
+    ContactInterface tracked = s.contact(true);
+    for (int k = 0; k <= 15; ++k) EXPECT_EQ(s.contacts_at(tracked, Vec3(-1e-3 * k, 0, 0)), 0u);
+    const std::filesystem::path file = std::filesystem::temp_directory_path() / "fem_contact_tracked_side.h5";
+    {
+        io::H5Writer w(file);
+        tracked.save_state(w, "contact/");
+        w.commit();
+    }
+    ContactInterface restored = s.contact(true), fresh = s.contact(true), untracked = s.contact(false);
+    restored.restore_state(io::H5Reader(file), "contact/");
+    const Vec3 under(-16e-3, 0, 0);
+    EXPECT_EQ(s.contacts_at(restored, under), 0u);
+    EXPECT_EQ(s.contacts_at(fresh, under), 4u);
+    {
+        io::H5Writer w(file);
+        untracked.save_state(w, "contact/");
+        w.commit();
+    }
+    EXPECT_THROW(fresh.restore_state(io::H5Reader(file), "contact/"), InputError);  // a file without the sides
+    std::filesystem::remove(file);
+
+    Mesh m = parallelogram_quad4(Vec3::Zero(), Vec3(0.1, 0, 0), Vec3(0, 0, -0.1), 2, 2, "sheet");
+    Mesh probe = box_hex8(0.01, 0.01, 0.01, 1, 1, 1, "probe");
+    probe.translate(Vec3(0, 0.01, 0));
+    m.append(probe);
+    ContactOptions o;
+    o.track_approach_side = true;
+    EXPECT_THROW(ContactInterface("sheet", ContactSurface::from_part(m, "probe", kTable31Rubber),
+                                  ContactSurface::from_part(m, "sheet", kSteel, 1.0, 0.002), o),
+                 InputError);
 }

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <tuple>
 
 #include <fmt/format.h>
@@ -95,6 +96,34 @@ TEST(ExplicitCase, RigidPlateDragsABlockWithFriction) {
         EXPECT_NEAR(r.u("top", 0, t), exact(t), 0.01 * exact(t)) << "t = " << t;
     }
     EXPECT_NEAR(r.u("top", 1, 0.15), 0.0, 1e-4);  // stays on the plate (penetration of the penalty)
+}
+
+// [[rigid_part]] track_approach_side: a thin plate slides over the edge of a block whose top lies
+// 3 mm below its plane (within its 5 mm depth). Tracked, the block's nodes came from behind and the
+// block stays at rest (no contact at all); the same case with the key false shoots the block's top
+// up through the plate as soon as the edge passes over it.
+TEST(ExplicitCase, TrackedPlateLeavesANodeThatCameFromBehindAlone) {
+    const fs::path folder = scratch("plate_edge");
+    const ExplicitCase tracked_case = read_case(kCases / "block_under_plate_edge.toml");
+    ASSERT_TRUE(tracked_case.rigid_parts.at(0).track_approach_side);
+    ASSERT_TRUE(tracked_case.rigid_parts.at(0).plate.track_approach_side);
+    CaseRun tracked(tracked_case, folder);
+    EXPECT_EQ(tracked.u("top", 1, 0.03), 0.0);
+    EXPECT_EQ(tracked.model->model().force_providers().at(0)->contact_report().max_penetration, 0.0);
+    std::ifstream in(kCases / "block_under_plate_edge.toml");
+    std::string text((std::istreambuf_iterator<char>(in)), {});
+    auto with_key = [&](const std::string& value) {  // the case with the key's line set to `value`
+        const std::string line = "\ntrack_approach_side = true\n";
+        std::string t = text;
+        if (t.find(line) != std::string::npos) t.replace(t.find(line), line.size(), "\ntrack_approach_side = " + value + "\n");
+        return t;
+    };
+    ASSERT_NE(with_key("false"), text);
+    std::ofstream(folder / "depth_rule.toml") << with_key("false");
+    CaseRun depth_rule(read_case(folder / "depth_rule.toml"), folder);
+    EXPECT_GT(depth_rule.u("top", 1, 0.03), 1e-3);  // shot up from 3 mm below the plane
+    std::ofstream(folder / "bad.toml") << with_key("3");
+    EXPECT_THROW(read_case(folder / "bad.toml"), InputError);
 }
 
 // A block thrown at a [[rigid_wall]] (fixed, frictionless, planar) leaves it with its speed (within 2 %:
