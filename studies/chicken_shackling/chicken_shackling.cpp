@@ -15,7 +15,8 @@
 //   Step 3  Sec 5.3, 5.4.1, Tables 5-4..5-6, Figs 5-10..5-17: body-grasping and leg-gripping
 //           (the hand of Table 4-1 with a 4.5-inch finger E, the bird tied to its perch until
 //           0.9 s, the fixed shackle's gripper from then; run_grasp): the five cases of Table 5-4
-//           to 1.1 s, judged by --full (`make all`) only: ~100 CPU minutes (README, Step 3)
+//           to 1.1 s, judged by --full (`make all`) only: four whole runs of ~20 CPU minutes, cases
+//           4 and 5 going on from Case 3's run at 0.5499 s (GraspBranch; README, Step 3)
 //   Step 4  Sec 5.4.2, Tables 5-3, 5-7, 5-8, Figs 5-19..5-22: the shackle rotating and inverting,
 //           the tet10 bird tied by its paws to a Belytschko-Tsay shell shackle driven through a
 //           rigid track (run_shackle), the drive ramped over 5 ms [R]: the rotating case to 0.13 s (the
@@ -59,6 +60,8 @@
 #include <filesystem>
 #include <fmt/format.h>
 #include <fstream>
+#include <functional>
+#include <future>
 #include <iostream>
 #include <limits>
 #include <memory>
@@ -343,6 +346,7 @@ constexpr double kConveyorPeak = 0.7, kShacklingTime = 0.9, kGraspEnd = 1.1;  //
 const Vec3 kConveyorUp(-0.4723, 0.04132, 0.0), kConveyorDown(-0.4105, -0.23705, 0.0);  // Table 5-6 [m/s]
 const Vec3 kGripper(0.0, -0.026, 0.130), kShackleFixedEnd(-0.187, -0.135, 0.116);       // Table 5-6 [m]
 constexpr double kSymmetryZ = 0.184;   // Table 5-6 (THESIS_CH4_5.md Sec 10 item 8)
+constexpr double kShackleLength = 0.381, kShackleWidth = 0.180, kShackleThickness = 0.010;  // Table 5-3
 constexpr double kPerchWidth = 25.0 * mm;  // the tube's diameter [R, reconstruction 14]
 // Bird mesh of the grasp model [R]: Step 4's sizes (20 mm body, 5 mm leg), straight-sided tet10.
 constexpr double kGraspBodySize = 20.0 * mm, kGraspLegSize = 5.0 * mm;
@@ -351,7 +355,9 @@ constexpr double kGraspMassScalingDt = 2.5e-6;  // as Step 4 (selective; the add
 // Sec 10 item 1); a decay c_d > 0 (--friction-decay, a sensitivity) lets mu_d act on slipping contacts.
 constexpr double kFrictionStatic = 0.4, kFrictionDynamic = 0.3;
 
-/// Table 5-4: the drum speed [rpm] of each case over 0-0.55, 0.55-0.85, 0.85-1.1 s.
+/// Table 5-4: the drum speed [rpm] of each case over 0-0.55, 0.55-0.85, 0.85-1.1 s (the switches
+/// t_drum1, t_drum2 of Fig 5-9).
+constexpr double kDrumSwitch1 = 0.55, kDrumSwitch2 = 0.85;  // [s]
 struct GraspCase {
     int number;
     std::array<double, 3> rpm;
@@ -389,7 +395,7 @@ hand::Scene grasp_scene(const GraspCase& c, const Mesh& bird, double density, co
     if (e.name != "E") throw InputError("grasp scene: Table 4-1's fifth finger is not E");
     e.length = 4.5 * units::inch, e.alpha = 180.0;  // Sec 5.3 / Table 5-6
     s.hand.drum.initial_angle = v.drum_phase;
-    s.hand.drum.omega = Curve::steps({{0.0, c.rpm[0] * units::rpm}, {0.55, c.rpm[1] * units::rpm}, {0.85, c.rpm[2] * units::rpm}},
+    s.hand.drum.omega = Curve::steps({{0.0, c.rpm[0] * units::rpm}, {kDrumSwitch1, c.rpm[1] * units::rpm}, {kDrumSwitch2, c.rpm[2] * units::rpm}},
                                      fmt::format("Table 5-4 case {}", c.number));
     hand::MeshObject o;
     o.part = "chicken";
@@ -524,14 +530,36 @@ struct GraspRestart {
     bool resume = false;        // continue the killed run's staging folder from its newest dump
 };
 
+/// A shared start (Table 5-4: cases 3, 4 and 5 turn the drum at 45 rpm until 0.55 s, so their runs
+/// are one run until then): the leading run's restart dump taken just before the first switch, and
+/// its record up to that dump. A branch restarts from the dump with its own drum schedule
+/// (ExplicitOptions::restart_from, a full deck restart; its VTU series lists the leading run's files
+/// before the dump) and ends bit for bit where its run from t = 0 would.
+struct GraspBranch {
+    std::filesystem::path dump;
+    double time = 0.0;  // [s] the dump's model time
+    GraspRun record;    // the rows sampled up to the dump (those a run from t = 0 has by then)
+};
+
+/// What makes a grasp run lead a shared start: at its first restart dump at or after `time` (asked
+/// for with its restart times) it keeps a copy of the dump, <name>-branch.h5 (its own dumps are
+/// pruned as it goes on), and hands it with its record so far to `handoff`.
+struct GraspLead {
+    double time = 0.0;  // [s] before the first switch of any branch
+    std::function<void(GraspBranch)> handoff;
+};
+
 /// One case of Table 5-4 from 0 to end_time (Gmsh-free: the bird mesh is given). Writes into folder
 /// `out`: grasp-case-<n>.pvd with its VTU every 50 ms, the record grasp-case-<n>.dat (row by row),
 /// restart dumps every restart.dump_every (the newest two kept; at the end only the end state's), and
 /// the surfaces (write_grasp_surfaces) at the start, at 0.7 and 0.9 s and at the end:
 /// grasp-case-<n>-{start,t0.7,t0.9,end}-{bird,hand}.dat.
 /// restart.resume: `out` is a killed run's staging folder; the run goes on from its newest dump.
+/// lead: this run leads a shared start (GraspLead); branch: this run goes on from one.
 GraspRun run_grasp(const GraspCase& c, const Mesh& bird, double density, double end_time, const std::filesystem::path& out,
-                   const GraspRestart& restart, const GraspVariant& variant) {
+                   const GraspRestart& restart, const GraspVariant& variant, const GraspLead* lead = nullptr,
+                   const GraspBranch* branch = nullptr) {
+    if (branch && restart.resume) throw InputError("a grasp run cannot both resume a killed run and start from a branch");
     hand::HandModel hm(grasp_scene(c, bird, density, variant));
     const Mesh& mesh = hm.mesh();
     const int centre = mesh.node_set("body_center-chicken")[0], head = mesh.node_set("head-chicken")[0];
@@ -549,7 +577,9 @@ GraspRun run_grasp(const GraspCase& c, const Mesh& bird, double density, double 
     o.progress = true;  // a side run of 40-50 min (core/progress.hpp: one updating line on a terminal, quiet in logs)
     o.pvd_path = out / (name + ".pvd"), o.vtu_interval = 0.05;
     o.restart_dir = out, o.restart_interval = restart.dump_every, o.restart_times = {end_time};
+    if (lead) o.restart_times.push_back(lead->time);
     if (restart.resume) o.restart_from = ExplicitSolver::latest_restart(out, name);
+    if (branch) o.restart_from = branch->dump, o.vtu_series_from_restart = true;
     ExplicitSolver solver(hm.model(), o);
     const std::filesystem::path dat_path = out / (name + ".dat");
     GraspRun r;
@@ -558,13 +588,19 @@ GraspRun run_grasp(const GraspCase& c, const Mesh& bird, double density, double 
         fmt::print("resuming {} from {} (t = {:.4f} s)\n", name, o.restart_from.filename().string(), solver.time());
         r = read_grasp_dat(dat_path, c.number, solver.time());
     }
+    if (branch) {
+        fmt::print("{} goes on from the shared start {} (t = {:.4f} s)\n", name, branch->dump.filename().string(), solver.time());
+        r = branch->record;
+        r.case_number = c.number;
+    }
+    bool handed_off = false;
     std::ofstream dat(dat_path, std::ios::trunc);
     dat << kGraspDatHeader;
     for (std::size_t k = 0; k < r.time.size(); ++k) dat << grasp_dat_row(r, k);
     dat.flush();
     if (!dat) throw InputError(fmt::format("cannot write '{}'", dat_path.string()));
     const auto& fingers_on_bird = hm.contact("fingers on chicken");
-    if (!restart.resume) write_grasp_surfaces(out / (name + "-start"), hm, mesh.nodes);
+    if (!restart.resume) write_grasp_surfaces(out / (name + "-start"), hm, mesh.nodes);  // (a branch's start is the reference state too)
     std::size_t dumps_seen = 0;
     // Fig 5-12's instants: the perch at the conveyor's apex (0.7 s) and at the shackling point (0.9 s).
     std::vector<double> snapshots;
@@ -572,6 +608,16 @@ GraspRun run_grasp(const GraspCase& c, const Mesh& bird, double density, double 
         if (t > solver.time() && t < end_time) snapshots.push_back(t);
     solver.observer = [&](const ExplicitSolver& sv) {
         const NodalState& s = sv.state();
+        // A dump written since the last call: the rows so far are those sampled up to it (in a cycle
+        // the observer runs before the dump), so a branch from it has the record a run from t = 0 has.
+        if (lead && !handed_off)
+            for (std::size_t k = dumps_seen; k < sv.restart_files().size() && !handed_off; ++k)
+                if (const double t = ExplicitSolver::restart_time(sv.restart_files()[k]); t >= lead->time) {
+                    const std::filesystem::path kept = out / (name + "-branch.h5");
+                    std::filesystem::copy_file(sv.restart_files()[k], kept, std::filesystem::copy_options::overwrite_existing);
+                    lead->handoff({kept, t, r});
+                    handed_off = true;
+                }
         if (!snapshots.empty() && sv.time() >= snapshots.front()) {
             write_grasp_surfaces(out / fmt::format("{}-t{:.1f}", name, snapshots.front()), hm, s.x);
             snapshots.erase(snapshots.begin());
@@ -594,6 +640,9 @@ GraspRun run_grasp(const GraspCase& c, const Mesh& bird, double density, double 
     const auto t0 = std::chrono::steady_clock::now();
     r.summary = solver.run();
     r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    if (lead && !handed_off)
+        throw InputError(fmt::format("{}: the run ended at {:.4f} s without its shared start's dump at {:.4f} s", name, solver.time(),
+                                     lead->time));
     dat.close();
     if (!dat) throw InputError(fmt::format("cannot write '{}'", dat_path.string()));
     ExplicitSolver::remove_older_restarts(out, name, 1);  // the end state's (restart_times), to go on from
@@ -735,7 +784,6 @@ std::string grasp_verdict_table(const std::vector<GraspFinding>& findings, const
 // along -z, so that J1 starts moving along +x at omega_y x 152.4 mm as in Step 5; inverting, about
 // the z axis through the fixed end from 32 to 90 degrees. The paw faces are tied to the nearest
 // shackle nodes at their offsets (explicit/offset_tie.hpp).
-constexpr double kShackleLength = 0.381, kShackleWidth = 0.180, kShackleThickness = 0.010;  // Table 5-3
 constexpr double kTrackLength = 0.060, kTrackWidth = 0.200;                                  // Table 5-3
 constexpr double kGravity = 9.81;
 // Bird mesh of the shackle model: coarser than Step 1's (the thesis's 3948 elements) [R].
@@ -1239,20 +1287,59 @@ void run(check::Study& study) {
     }
 
     // ---- Step 3: body-grasping / leg-gripping (Sec 5.3, 5.4.1, Tables 5-4..5-6, Figs 5-10..5-15) --------
-    // The five drum-speed cases of Table 5-4 to 1.1 s: ~20 CPU minutes each, so only `make all`
-    // (--full) runs and judges them (the entries are full_only; a run without --full lists them as
-    // not run). Each case writes grasp-case-<n>.{dat,pvd}, its VTU and 3D-view surfaces into the
-    // results folder; the cases run at once on the cores (check::run_cases).
+    // The five drum-speed cases of Table 5-4 to 1.1 s: ~20 CPU minutes each from t = 0, so only `make
+    // all` (--full) runs and judges them (the entries are full_only; a run without --full lists them
+    // as not run). Each case writes grasp-case-<n>.{dat,pvd}, its VTU and 3D-view surfaces into the
+    // results folder; the cases run at once on the cores (check::run_cases). Cases 3, 4 and 5 turn the
+    // drum at 45 rpm until t_drum1 (0.55 s): Case 3 leads that shared start and hands its dump at
+    // 0.5499 s (grasp-case-3-branch.h5) to cases 4 and 5, which go on from it (GraspBranch: the same
+    // bits as their runs from t = 0). Taken in the order 3, 1, 2, 4, 5, the four whole-run
+    // equivalents fill two cores for two whole runs' time (three whole runs before the sharing).
     if (study.full()) {
         const double density = chicken::density_for_mass(birdA, propsA.volume);  // Step 1's volume, as Step 4
         const Mesh mesh = grasp_bird_mesh(birdA);  // Gmsh: here, on this thread, before the cases start
-        const std::vector<GraspRun> grasp_runs = check::run_cases<GraspRun>(
-            study, 5, [&](int k) { return run_grasp(kTable54[k], mesh, density, kGraspEnd, out, GraspRestart{}, GraspVariant{}); },
+        const GraspCase& leader = kTable54[2];
+        auto shares_start = [&](const GraspCase& c) { return c.number != leader.number && c.rpm[0] == leader.rpm[0]; };
+        std::vector<int> order = {leader.number};  // case numbers: the leader, the others, the branches
+        for (const GraspCase& c : kTable54)
+            if (c.number != leader.number && !shares_start(c)) order.push_back(c.number);
+        for (const GraspCase& c : kTable54)
+            if (shares_start(c)) order.push_back(c.number);
+        std::promise<GraspBranch> handoff;
+        const std::shared_future<GraspBranch> shared_start = handoff.get_future().share();
+        std::atomic<bool> handed{false};
+        const GraspLead lead{.time = kDrumSwitch1 - 0.1e-3, .handoff = [&](GraspBranch b) {
+                                 handed = true;
+                                 handoff.set_value(std::move(b));
+                             }};
+        std::vector<GraspRun> grasp_runs = check::run_cases<GraspRun>(
+            study, static_cast<int>(order.size()),
+            [&](int k) {
+                const GraspCase& c = kTable54[order[k] - 1];
+                if (c.number == leader.number) {
+                    try {
+                        return run_grasp(c, mesh, density, kGraspEnd, out, GraspRestart{}, GraspVariant{}, &lead);
+                    } catch (...) {
+                        if (!handed) handoff.set_exception(std::current_exception());  // the branches fail with it
+                        throw;
+                    }
+                }
+                if (shares_start(c)) {
+                    const GraspBranch& from = shared_start.get();
+                    return run_grasp(c, mesh, density, kGraspEnd, out, GraspRestart{}, GraspVariant{}, nullptr, &from);
+                }
+                return run_grasp(c, mesh, density, kGraspEnd, out, GraspRestart{}, GraspVariant{});
+            },
             {.writes_files = {0, 1, 2, 3, 4}});
+        std::ranges::sort(grasp_runs, {}, &GraspRun::case_number);
         std::vector<GraspMeasures> measures;
         for (const GraspRun& r : grasp_runs) {
             fmt::print("{}\n", r.summary.text());
-            study.record_run({fmt::format("grasp case {}", r.case_number), r.summary.to_json()});
+            const std::string name = shares_start(kTable54[r.case_number - 1])
+                                         ? fmt::format("grasp case {} (from case {}'s dump at {:.4f} s)", r.case_number, leader.number,
+                                                       shared_start.get().time)
+                                         : fmt::format("grasp case {}", r.case_number);
+            study.record_run({name, r.summary.to_json()});
             measures.push_back(measure_grasp(r));
         }
         for (const GraspFinding& f : grasp_findings(measures)) {
