@@ -13,6 +13,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <optional>
 
 #include "core/error.hpp"
 #include "explicit_test_support.hpp"
@@ -99,6 +100,19 @@ ExplicitOptions wire_options(double end) {
 bool same_bits(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
     return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(Vec3)) == 0;
 }
+
+// The full deck restart tests' model: a rubber bar of 5 hexahedra (bulk viscosity, stiffness
+// hourglass control) clamped at x0, a tip load pulse at x1, and with `gravity` that curve switching
+// on gravity (-z, 50 g) (none: no gravity).
+const Mesh kRestartBar = box_hex8(0.1, 0.02, 0.02, 5, 1, 1, "bar");
+std::unique_ptr<ExplicitModel> restart_bar(std::optional<Curve> gravity) {
+    auto m = std::make_unique<ExplicitModel>(kRestartBar);
+    m->add_hex8("bar", ElasticMaterial::make("rubber", 6.1e6, 0.45, 1000));
+    m->fix(kRestartBar.node_set("x0"));
+    m->add_nodal_force(kRestartBar.node_set("x1"), Vec3(0, 0.5, 0), Curve::pulse(0.0, 1e-3));
+    if (gravity) m->set_gravity(Vec3(0, 0, -9.81 * 50), *gravity);
+    return m;
+}
 }  // namespace
 
 TEST(ExplicitRestart, KilledRunResumesFromItsLatestDumpBitIdentically) {
@@ -169,16 +183,8 @@ TEST(ExplicitRestart, FullDeckRestartMayChangeTheLoads) {
     const double T = 4e-3;
     const fs::path dir = fs::temp_directory_path() / "fem_explicit_restart_deck";
     fs::remove_all(dir);
-    const Mesh mesh = box_hex8(0.1, 0.02, 0.02, 5, 1, 1, "bar");
-    const auto rubber = ElasticMaterial::make("rubber", 6.1e6, 0.45, 1000);
-    auto bar = [&](bool gravity, const Curve& on) {
-        auto m = std::make_unique<ExplicitModel>(mesh);
-        m->add_hex8("bar", rubber);
-        m->fix(mesh.node_set("x0"));
-        m->add_nodal_force(mesh.node_set("x1"), Vec3(0, 0.5, 0), Curve::pulse(0.0, 1e-3));
-        if (gravity) m->set_gravity(Vec3(0, 0, -9.81 * 50), on);
-        return m;
-    };
+    const Mesh& mesh = kRestartBar;
+    auto bar = [](bool gravity, const Curve& on) { return restart_bar(gravity ? std::optional<Curve>(on) : std::nullopt); };
     auto opts = [&](double end) {
         ExplicitOptions o = test::quiet(end);
         o.name = "bar";
@@ -234,16 +240,7 @@ TEST(ExplicitRestart, BranchOfASharedStartContinuesItsVtuSeries) {
     const double T = 4e-3;
     const fs::path dir = fs::temp_directory_path() / "fem_explicit_restart_branch";
     fs::remove_all(dir);
-    const Mesh mesh = box_hex8(0.1, 0.02, 0.02, 5, 1, 1, "bar");
-    const auto rubber = ElasticMaterial::make("rubber", 6.1e6, 0.45, 1000);
-    auto bar = [&](const Curve& gravity_on) {
-        auto m = std::make_unique<ExplicitModel>(mesh);
-        m->add_hex8("bar", rubber);
-        m->fix(mesh.node_set("x0"));
-        m->add_nodal_force(mesh.node_set("x1"), Vec3(0, 0.5, 0), Curve::pulse(0.0, 1e-3));
-        m->set_gravity(Vec3(0, 0, -9.81 * 50), gravity_on);
-        return m;
-    };
+    auto bar = [](const Curve& gravity_on) { return restart_bar(gravity_on); };
     auto opts = [&](double end, const fs::path& pvd) {
         ExplicitOptions o = test::quiet(end);
         o.name = "bar";
