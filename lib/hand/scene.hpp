@@ -65,7 +65,8 @@ struct Plate {
     /// Deepest penetration taken as contact [m]: the plate's thickness. A thin plate, as the thesis's
     /// shell pallet: 2 mm is ~15x the football's largest pallet penetration in a run (0.14 mm); a
     /// deeper limit (the first sessions' 30 mm) lets a node falling past the edge, within the edge
-    /// tolerance and below the top, be shot up by the penalty spring (football_sweep README).
+    /// tolerance and below the top, be shot up by the penalty spring (football_sweep README), unless
+    /// the plate tracks the side nodes come from (below).
     double depth = 0.002;
     /// Capture only nodes that reach the plate from in front (contact::ContactOptions::
     /// track_approach_side): a node that enters the plate's outline from behind an edge (a leg
