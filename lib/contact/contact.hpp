@@ -62,7 +62,8 @@ struct ContactOptions {
     // yet seen near a face follows the depth rule alone. So the depth limit can be the master's real
     // thickness: a node that enters a thin plate's outline from behind its edge (a leg crossing the
     // plane of a shackle plate) is not shot up by the penalty spring, and a node pressed into the
-    // plate is held up to that depth. Every candidate is projected (skip_far_candidates does not
+    // plate is held up to that depth (deeper it is let go, and taken again if it comes back within
+    // it while still under the face: it came from in front). Every candidate is projected (skip_far_candidates does not
     // apply). InputError for a master with two-sided segments.
     bool track_approach_side = false;
 };

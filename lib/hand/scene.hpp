@@ -70,8 +70,9 @@ struct Plate {
     double depth = 0.002;
     /// Capture only nodes that reach the plate from in front (contact::ContactOptions::
     /// track_approach_side): a node that enters the plate's outline from behind an edge (a leg
-    /// crossing the plane of the shackle plate near its end) or was pushed through deeper than
-    /// `depth` is left alone until it is in front again. Then `depth` can be the plate's thickness
+    /// crossing the plane of the shackle plate near its end) is left alone until it is in front
+    /// again; a node that came from in front is held to `depth` (deeper it is let go, and taken
+    /// again if it comes back within `depth`). Then `depth` can be the plate's thickness
     /// without nodes past the edge being shot up.
     bool track_approach_side = false;
     /// A motion other than one direction with a speed schedule (then `direction` and `speed` are
