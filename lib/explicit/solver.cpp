@@ -127,10 +127,7 @@ void ExplicitModel::prescribe_motion(const std::vector<int>& nodes,
 void ExplicitModel::add_rigid_part(std::string_view part, RigidMotion motion) {
     for (const auto& m : motions_)
         if (m.part == part) throw InputError(fmt::format("add_rigid_part: part '{}' is already rigid", part));
-    std::set<int> nodes;
-    for (int b : mesh_.blocks_of_part(part))  // throws for an unknown part
-        for (int node : mesh_.blocks[b].connectivity) nodes.insert(node);
-    motions_.push_back({std::vector<int>(nodes.begin(), nodes.end()), std::move(motion), {}, std::string(part)});
+    motions_.push_back({mesh_.nodes_of_part(part), std::move(motion), {}, std::string(part)});  // throws for an unknown part
 }
 
 ForceProvider& ExplicitModel::add_force_provider(std::unique_ptr<ForceProvider> provider) {

@@ -130,7 +130,7 @@ Part read_part(const TomlTable& t, const std::map<std::string, ElasticMaterial>&
     if (hand_case && p.mesh == "finger")
         t.fail("mesh", "a case with [hand] has its fingers in [hand]; its [[part]]s are the objects it grasps (ellipsoid, "
                        "box, gmsh or deck), got 'finger'");
-    std::vector<std::string> keys{"name", "mesh", "material", "alpha", "initial_velocity"};
+    std::vector<std::string> keys{"name", "mesh", "material", "alpha", "damping_frame", "initial_velocity"};
     if (p.mesh != "ellipsoid") keys.insert(keys.end(), {"offset", "hourglass_qm"});
     if (hand_case && p.mesh != "ellipsoid") keys.push_back("symmetry_set");
     if (p.mesh == "box") keys.insert(keys.end(), {"size", "origin", "elements", "element"});
@@ -142,6 +142,12 @@ Part read_part(const TomlTable& t, const std::map<std::string, ElasticMaterial>&
     refuse_keys_outside(t, keys, fmt::format("a '{}' part", p.mesh));
     p.material = material_of(t, materials);
     p.alpha = t.real_or("alpha", 0.0, Range::non_negative());
+    if (t.has("damping_frame")) {
+        if (hand_case)
+            t.fail("damping_frame", "a case with [hand] damps its objects on absolute velocity ([hand] damping_frame is the fingers')");
+        p.damping_frame = t.string("damping_frame");
+        if (!(p.alpha > 0.0)) t.fail("damping_frame", "needs alpha > 0 (it names what the part's alpha damping is relative to)");
+    }
     p.initial_velocity = vec3_or(t, "initial_velocity", Vec3::Zero());
     if (p.mesh != "ellipsoid") {
         p.offset = vec3_or(t, "offset", Vec3::Zero());
@@ -521,6 +527,12 @@ ExplicitCase from_document(const input::TomlDocument& doc) {
     std::vector<std::string> all = deformable;
     all.insert(all.end(), rigid.begin(), rigid.end());
     auto has = [](const std::vector<std::string>& v, const std::string& s) { return std::find(v.begin(), v.end(), s) != v.end(); };
+    {
+        const auto part_tables = root.tables("part");
+        for (std::size_t k = 0; k < c.parts.size(); ++k)
+            if (!c.parts[k].damping_frame.empty() && !has(rigid, c.parts[k].damping_frame))
+                unknown_name(part_tables[k], "damping_frame", c.parts[k].damping_frame, "a rigid part", rigid);
+    }
     for (const TomlTable& t : root.tables("contact")) {
         Contact k = read_contact(t);
         if (!has(deformable, k.slave))

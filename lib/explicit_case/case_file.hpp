@@ -75,6 +75,9 @@ struct Part {
     std::string symmetry_set;
     // solver settings
     double alpha = 0.0;            // mass damping [1/s] (Eq 2-39, *DAMPING_PART_MASS)
+    /// A rigid part's name: alpha damps the velocity relative to that part's motion
+    /// (explicit/relative_damping.hpp); empty: absolute velocity.
+    std::string damping_frame;
     Vec3 initial_velocity = Vec3::Zero();
     double hourglass_qm = 0.1;     // hexahedra
     int line = 0;                  // in the case file, for messages

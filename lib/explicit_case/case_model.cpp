@@ -18,6 +18,7 @@
 #include "core/progress.hpp"
 #include "deck/deck.hpp"
 #include "explicit/parallel.hpp"
+#include "explicit/relative_damping.hpp"
 #include "explicit/tet_groups.hpp"
 #include "explicit_case/case_file.hpp"
 #include "io/atomic_file.hpp"
@@ -164,12 +165,8 @@ CaseModel::CaseModel(const ExplicitCase& c) {
     for (const Part& p : c.parts) {
         located(at(c, p.line, "[[part]] '" + p.name + "'"), [&] {
             std::set<ElementShape> shapes;
-            std::set<int> nodes;
-            for (int b : msh.blocks_of_part(p.name)) {
-                shapes.insert(msh.blocks[b].shape);
-                nodes.insert(msh.blocks[b].connectivity.begin(), msh.blocks[b].connectivity.end());
-            }
-            part_nodes[p.name].assign(nodes.begin(), nodes.end());
+            for (int b : msh.blocks_of_part(p.name)) shapes.insert(msh.blocks[b].shape);
+            part_nodes[p.name] = msh.nodes_of_part(p.name);
             ElasticMaterial material = p.material;
             const double mass = p.mesh == "ellipsoid" ? p.ellipsoid.mass : 0.0;
             if (mass > 0.0) {  // the density that gives the part this mass on its mesh (as HandModel does)
@@ -204,6 +201,12 @@ CaseModel::CaseModel(const ExplicitCase& c) {
         });
         motion[r.name] = r.motion;
     }
+    for (const Part& p : c.parts)
+        if (!p.damping_frame.empty())
+            located(at(c, p.line, "[[part]] '" + p.name + "'"), [&] {
+                set_relative_mass_damping(model, p.name, p.alpha, motion.at(p.damping_frame), p.damping_frame);
+                return 0;
+            });
     for (std::size_t k = 0; k < c.boundaries.size(); ++k) {
         const Boundary& b = c.boundaries[k];
         located(at(c, b.line, fmt::format("boundary[{}]", k)), [&] {

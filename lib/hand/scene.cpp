@@ -11,41 +11,12 @@
 #include "contact/explicit_contact.hpp"
 #include "contact/rigid_wall.hpp"
 #include "core/error.hpp"
+#include "explicit/relative_damping.hpp"
 #include "explicit/tet_groups.hpp"
 #include "mesh/finger.hpp"
 #include "mesh/mesh.hpp"
 
 namespace fem::hand {
-
-namespace {
-
-// Co-rotating mass damping (DampingFrame::drum): adds alpha m omega x (x - c) to the finger nodes,
-// so that with the solver's -alpha m v the net damping force is -alpha m (v - v_drum(x)). Its work
-// is booked by the solver with the force providers' ("contact") energy.
-class DrumFrameDamping final : public ForceProvider {
-public:
-    DrumFrameDamping(RigidMotion drum, std::vector<std::pair<int, double>> node_alpha)
-        : drum_(std::move(drum)), node_alpha_(std::move(node_alpha)) {}
-    std::string name() const override { return "co-rotating damping frame"; }
-    void initialize(const NodalState& s) override {
-        mass_.clear();
-        for (const auto& [node, a] : node_alpha_) mass_.push_back(a * s.mass[node]);
-    }
-    void add_forces(double t, const NodalState& s, std::vector<Vec3>& force, std::vector<Vec3>&) override {
-        const RigidPose drum = drum_.pose(t);
-        for (std::size_t k = 0; k < node_alpha_.size(); ++k) {
-            const int i = node_alpha_[k].first;
-            force[i] += mass_[k] * drum.velocity_at(s.x[i]);
-        }
-    }
-
-private:
-    RigidMotion drum_;
-    std::vector<std::pair<int, double>> node_alpha_;
-    std::vector<double> mass_;
-};
-
-}  // namespace
 
 Scene seen_from(Scene s, double t0) {
     if (t0 == 0.0) return s;
@@ -171,10 +142,7 @@ HandModel::HandModel(const Scene& scene) : scene_(scene) {
             if (const auto qm = hourglass_qm.find(part); qm != hourglass_qm.end()) o.hourglass_qm = qm->second;
             model_->add_hex8(part, mat, o);
         }
-        std::set<int> nodes;
-        for (int b : msh.blocks_of_part(part))
-            for (int c : msh.blocks[b].connectivity) nodes.insert(c);
-        part_nodes_[part].assign(nodes.begin(), nodes.end());
+        part_nodes_[part] = msh.nodes_of_part(part);
         // Lumped masses (volume / 8 per node) for centres of mass.
         std::map<int, double> lm;
         double total = 0.0;
@@ -210,7 +178,8 @@ HandModel::HandModel(const Scene& scene) : scene_(scene) {
         }
     }
     if (scene_.damping_frame == DampingFrame::drum)
-        model_->add_force_provider(std::make_unique<DrumFrameDamping>(drum_motion_, std::move(node_alpha)));
+        // Co-rotating mass damping: -alpha m (v - v_drum(x)) on the finger nodes (relative_damping.hpp).
+        model_->add_force_provider(std::make_unique<RelativeMassDamping>("co-rotating damping frame", drum_motion_, std::move(node_alpha)));
     for (const auto& o : scene_.objects) {
         if (o.alpha > 0.0) model_->set_mass_damping(o.part, o.alpha);
         model_->set_initial_velocity(part_nodes_[o.part], o.initial_velocity);

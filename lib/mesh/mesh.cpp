@@ -46,6 +46,12 @@ std::vector<int> Mesh::blocks_of_part(std::string_view part) const {
     return ids;
 }
 
+std::vector<int> Mesh::nodes_of_part(std::string_view part) const {
+    std::set<int> nodes;
+    for (int b : blocks_of_part(part)) nodes.insert(blocks[b].connectivity.begin(), blocks[b].connectivity.end());
+    return {nodes.begin(), nodes.end()};
+}
+
 std::vector<Vec3> Mesh::element_coordinates(int block, int e) const {
     std::vector<Vec3> x;
     for (int n : blocks[block].element(e)) x.push_back(nodes[n]);

@@ -48,6 +48,8 @@ struct Mesh {
     const std::vector<int>& node_set(std::string_view name) const;
     /// Indices of the blocks whose part is `part`; throws InputError when there are none.
     std::vector<int> blocks_of_part(std::string_view part) const;
+    /// The nodes of the elements of `part`, ascending, each once; throws as blocks_of_part.
+    std::vector<int> nodes_of_part(std::string_view part) const;
     /// Coordinates of the nodes of element e of block b (copied, for element routines).
     std::vector<Vec3> element_coordinates(int block, int e) const;
     /// Appends another mesh (its nodes renumbered after ours; node sets merged, names kept).

@@ -126,6 +126,45 @@ TEST(ExplicitCase, TrackedPlateLeavesANodeThatCameFromBehindAlone) {
     EXPECT_THROW(read_case(folder / "bad.toml"), InputError);
 }
 
+// A part damped relative to a rigid part ([[part]] damping_frame, explicit/relative_damping.hpp):
+// a block at rest is dragged up to the speed of a belt it does not touch, along the closed form of a
+// damped point mass, x(t) = V t - V (1 - exp(-alpha t)) / alpha (20.5 mm at 0.03 s; the mid-point
+// damping is exp(-alpha dt) to (alpha dt)^3 / 12 per step: 1e-4 of it is a strict bound); without the
+// key (absolute damping) it does not move. A frame that is not a rigid part, or no alpha, is refused.
+TEST(ExplicitCase, APartDampedRelativeToABeltIsDraggedToItsSpeed) {
+    const fs::path folder = scratch("belt");
+    const double V = 1.0, alpha = 100.0, t = 0.03;
+    CaseRun belt(read_case(kCases / "block_damped_on_a_belt.toml"), folder);
+    const History& h = belt.solver->history();
+    ASSERT_FALSE(h.time.empty());
+    const double te = h.time.back();  // the last sample: the end of the run, within a step of t
+    EXPECT_NEAR(te, t, 1e-4);
+    EXPECT_NEAR(belt.u("top", 0, te), V * te - V * (1.0 - std::exp(-alpha * te)) / alpha, 1e-4 * 0.0205);
+    std::ifstream in(kCases / "block_damped_on_a_belt.toml");
+    const std::string text((std::istreambuf_iterator<char>(in)), {});
+    auto with = [&](const std::string& from, const std::string& to, const std::string& name) {
+        std::string s = text;
+        const auto at = s.find(from);
+        EXPECT_NE(at, std::string::npos) << from;
+        s.replace(at, from.size(), to);
+        std::ofstream(folder / name) << s;
+        return folder / name;
+    };
+    CaseRun still(read_case(with("damping_frame = \"belt\"\n", "", "absolute.toml")), folder);
+    EXPECT_EQ(still.u("top", 0, t), 0.0);
+    auto refusal = [](const fs::path& file) {
+        try {
+            read_case(file);
+        } catch (const InputError& e) {
+            return std::string(e.what());
+        }
+        return std::string("no error");
+    };
+    EXPECT_NE(refusal(with("damping_frame = \"belt\"", "damping_frame = \"block\"", "frame_not_rigid.toml")).find("damping_frame"),
+              std::string::npos);
+    EXPECT_NE(refusal(with("alpha = 100.0\n", "", "no_alpha.toml")).find("needs alpha > 0"), std::string::npos);
+}
+
 // A block thrown at a [[rigid_wall]] (fixed, frictionless, planar) leaves it with its speed (within 2 %:
 // tests/contact/test_rigid_wall.cpp's reasons), and the wall is reported as a contact interface.
 TEST(ExplicitCase, RigidWallThrowsABlockBackWithItsSpeed) {
