@@ -369,14 +369,19 @@ void ContactInterface::save_state(io::H5Writer& w, const std::string& prefix) co
         const Pass& P = *passes_[p];
         const std::string pp = prefix + "pass" + std::to_string(p) + "/";
         P.list.save_state(w, pp + "search/");
-        Eigen::MatrixXd force(P.history.size(), 3);
-        std::vector<long long> segment(P.history.size());
+        Eigen::MatrixXd force(P.history.size(), 3), normal(P.history.size(), 3);
+        std::vector<long long> segment(P.history.size()), side(P.history.size());
         for (std::size_t i = 0; i < P.history.size(); ++i) {
             force.row(i) = P.history[i].force.transpose();
             segment[i] = P.history[i].segment;
+            side[i] = P.history[i].side;
+            normal.row(i) = P.history[i].normal.transpose();
         }
         w.write(pp + "friction_force", force);
         w.write_ints(pp + "segment", segment);
+        // A two-sided (shell) contact keeps the side it started on while it lasts (evaluate).
+        w.write_ints(pp + "side", side);
+        w.write(pp + "contact_normal", normal);
         if (!P.approach.empty()) w.write_ints(pp + "approach", std::vector<long long>(P.approach.begin(), P.approach.end()));
     }
     // The last evaluation's contact points (outputs: an observer reads them before the next cycle).
@@ -413,6 +418,22 @@ void ContactInterface::restore_state(const io::H5Reader& r, const std::string& p
             P.history[i].segment = static_cast<int>(segment[i]);
             if (P.history[i].segment >= static_cast<int>(P.master->segments.size()))
                 throw bad(fmt::format("pass {}: segment {} of the file is not a master segment here", p, segment[i]));
+        }
+        if (r.has(pp + "side")) {
+            const auto side = r.read_ints(pp + "side");
+            const Eigen::MatrixXd normal = r.read_matrix(pp + "contact_normal");
+            if (side.size() != P.history.size() || normal.rows() != static_cast<Eigen::Index>(P.history.size()))
+                throw bad(fmt::format("pass {} has {} contact sides in the file, {} slave nodes here", p, side.size(), P.history.size()));
+            for (std::size_t i = 0; i < P.history.size(); ++i) {
+                P.history[i].side = static_cast<int>(side[i]);
+                P.history[i].normal = normal.row(i).transpose();
+            }
+        } else {
+            // Written before the sides were saved: fine unless a node is in contact with a two-sided face.
+            for (const auto& h : P.history)
+                if (h.segment >= 0 && P.master->segments[h.segment].two_sided)
+                    throw bad(fmt::format("pass {}: a node is in contact with a two-sided (shell) face, and the file does not "
+                                          "say on which side (written before contact sides were saved)", p));
         }
         if (!P.approach.empty()) {
             if (!r.has(pp + "approach"))

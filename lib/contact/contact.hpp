@@ -139,9 +139,11 @@ public:
     long rebuilds() const;
     long cycles() const;
     /// Restart: everything a later evaluate depends on (per pass the candidate lists, counters and
-    /// rebuild positions, each slave node's friction spring force and segment), the energies and
-    /// statistics, and the last evaluation's outputs, under the HDF5 group `prefix`. restore_state
-    /// throws InputError when the file's surfaces differ in size from this interface's.
+    /// rebuild positions, each slave node's friction spring force, segment, and on a two-sided
+    /// (shell) face the side it touches and the contact normal), the energies and statistics, and the
+    /// last evaluation's outputs, under the HDF5 group `prefix`. restore_state throws InputError when
+    /// the file's surfaces differ in size from this interface's, or when a file without the sides
+    /// (written before they were saved) has a node in contact with a two-sided face.
     void save_state(io::H5Writer& w, const std::string& prefix) const;
     void restore_state(const io::H5Reader& r, const std::string& prefix);
 

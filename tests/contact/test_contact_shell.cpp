@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <functional>
 
 #include "core/error.hpp"
@@ -14,6 +15,7 @@
 #include "../explicit/explicit_test_support.hpp"
 #include "contact/contact.hpp"
 #include "contact/explicit_contact.hpp"
+#include "io/hdf5.hpp"
 
 using namespace fem;
 using fem::test::kShellSteel;
@@ -93,6 +95,56 @@ TEST(ContactShellThickness, GapsFromTheOffsetSurfacesOnTheApproachSide) {
     expect(probe_force(2.5e-3, 4e-3, 2e-3), 4 * 0.1 * thick_probe.node_stiffness[0] * 0.5e-3, "2 mm probe at 2.5 mm");
     expect(probe_force(1e-3, 0.0, 0.0), 0.0, "1 mm above, no thickness");
     expect(probe_force(-1e-3, 0.0, 0.0), 4 * k * 1e-3, "1 mm below, no thickness (one-sided)");
+}
+
+// The side a node touches a two-sided face from is restart state: the probe of the test above,
+// 1 mm above a 4 mm plate (in contact from above), saved, restored into a fresh interface and pushed
+// to 0.5 mm below the mid-surface, is pushed up by its 2.5 mm penetration of the upper surface, to the
+// bit as the interface that was not interrupted; a fresh interface (no history) pushes it down. A file
+// without the sides is refused while a node is in contact with a two-sided face.
+TEST(ContactShellThickness, TheSideOfAShellContactIsRestartState) {
+    const Mesh m = plate_and_probe(1e-3);
+    auto interface = [&] {
+        return ContactInterface("probe on plate", ContactSurface::from_part(m, "probe", kShellSteel),
+                                ContactSurface::from_part(m, "plate", kShellSteel, 1.0, 4e-3));
+    };
+    std::vector<Vec3> above = m.nodes, below = m.nodes;
+    for (int i = 9; i < 13; ++i) below[i].z() = -0.5e-3;
+    auto push = [&](ContactInterface& ci, const std::vector<Vec3>& x, double t) {
+        std::vector<Vec3> f(x.size(), Vec3::Zero());
+        ci.evaluate(x, {}, t, 1e-6, f);
+        return f;
+    };
+    ContactInterface whole = interface();
+    push(whole, above, 0.0);
+    const std::filesystem::path file = std::filesystem::temp_directory_path() / "fem_contact_shell_side.h5";
+    {
+        io::H5Writer w(file);
+        whole.save_state(w, "contact/");
+        w.commit();
+    }
+    const std::vector<Vec3> f_whole = push(whole, below, 1e-6);
+    ContactInterface restored = interface(), fresh = interface();
+    restored.restore_state(io::H5Reader(file), "contact/");
+    const std::vector<Vec3> f_restored = push(restored, below, 1e-6), f_fresh = push(fresh, below, 1e-6);
+    for (int i = 9; i < 13; ++i) {
+        EXPECT_EQ(f_restored[i], f_whole[i]) << "node " << i;
+        EXPECT_GT(f_whole[i].z(), 0.0);
+        EXPECT_LT(f_fresh[i].z(), 0.0);
+    }
+    // The file of the state above without the sides (as written before they were saved).
+    const std::filesystem::path old_file = std::filesystem::temp_directory_path() / "fem_contact_shell_side_old.h5";
+    {
+        const io::H5Reader r(file);
+        io::H5Writer w(old_file);
+        for (const char* name : {"scalars", "master_resultant", "points", "pass0/friction_force"}) w.write(std::string("contact/") + name, r.read_matrix(std::string("contact/") + name));
+        w.write_ints("contact/pass0/segment", r.read_ints("contact/pass0/segment"));
+        w.commit();
+    }
+    ContactInterface from_old = interface();
+    EXPECT_THROW(from_old.restore_state(io::H5Reader(old_file), "contact/"), InputError);
+    std::filesystem::remove(file);
+    std::filesystem::remove(old_file);
 }
 
 namespace {
