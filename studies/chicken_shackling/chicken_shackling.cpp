@@ -1401,7 +1401,8 @@ void run(check::Study& study) {
             study.record_run({"shackle " + name, r.summary.to_json()});
             write_shackle_dat(out / fmt::format("shackle-{}.dat", name), r);
         }
-        // The shackled bird in 3D (surfaces written by run_shackle), seen from the side it sways to.
+        // The shackled bird in 3D (surfaces written by run_shackle), one view for all three (azimuth 340:
+        // the plate, the body and the legs all in sight).
         if (!study.figures_dir().empty()) {
             const auto dir = study.source_dir() / "studies" / "chicken_shackling";
             for (const auto& [name, time, moment] : {std::tuple{"rotating", "0.12", "as the drive stops"},
