@@ -173,13 +173,22 @@ std::string seconds_since(std::chrono::steady_clock::time_point t0) {
 }
 
 // --- pictures -------------------------------------------------------------------------------------------
+/// The faces of `surfaces` at positions x as triangles (a quadrilateral split along its 0-2 diagonal),
+/// oriented as the surfaces' (outward), for io::write_shaded_triangles.
+std::vector<std::array<Vec3, 3>> surface_triangles(std::span<const contact::ContactSurface> surfaces, std::span<const Vec3> x) {
+    std::vector<std::array<Vec3, 3>> t;
+    for (const auto& surface : surfaces)
+        for (const auto& sg : surface.segments) {
+            t.push_back({x[sg.n[0]], x[sg.n[1]], x[sg.n[2]]});
+            if (sg.count == 4) t.push_back({x[sg.n[0]], x[sg.n[2]], x[sg.n[3]]});
+        }
+    return t;
+}
+
 /// The outer surface of a solid part as shaded triangles for gnuplot (mm).
 void write_surface(const std::filesystem::path& path, const Mesh& mesh, const std::string& part, const Vec3& light) {
     const auto surface = contact::ContactSurface::from_part(mesh, part, chicken::material(1000.0));
-    std::vector<std::array<Vec3, 3>> triangles;
-    triangles.reserve(surface.segments.size());
-    for (const auto& s : surface.segments) triangles.push_back({mesh.nodes[s.n[0]], mesh.nodes[s.n[1]], mesh.nodes[s.n[2]]});
-    io::write_shaded_triangles(path, triangles, light, 1000.0);
+    io::write_shaded_triangles(path, surface_triangles({&surface, 1}, mesh.nodes), light, 1000.0);
 }
 
 /// Side view of the bird's construction (Fig 5-2: the CAD outline and the skeleton): closed
@@ -465,17 +474,8 @@ struct GraspRun {
 void write_scene_surfaces(const std::filesystem::path& prefix, std::span<const Vec3> x, std::span<const contact::ContactSurface> bird,
                           std::span<const contact::ContactSurface> machine) {
     const Vec3 light(0.3, 0.8, 1.0);
-    auto triangles = [&](std::span<const contact::ContactSurface> surfaces) {
-        std::vector<std::array<Vec3, 3>> t;
-        for (const auto& surface : surfaces)
-            for (const auto& sg : surface.segments) {
-                t.push_back({x[sg.n[0]], x[sg.n[1]], x[sg.n[2]]});
-                if (sg.count == 4) t.push_back({x[sg.n[0]], x[sg.n[2]], x[sg.n[3]]});
-            }
-        return t;
-    };
-    io::write_shaded_triangles(prefix.string() + "-bird.dat", triangles(bird), light, 1000.0);
-    io::write_shaded_triangles(prefix.string() + "-hand.dat", triangles(machine), light, 1000.0);
+    io::write_shaded_triangles(prefix.string() + "-bird.dat", surface_triangles(bird, x), light, 1000.0);
+    io::write_shaded_triangles(prefix.string() + "-hand.dat", surface_triangles(machine, x), light, 1000.0);
 }
 
 /// Step 3's scene: the bird, and the fingers, drum, perch and shackle of the hand model.
@@ -1415,18 +1415,17 @@ void run(check::Study& study) {
         }
         // The relative displacement of Sec 5.4.2: |u chicken centre| - |u shackle centre point|, its
         // largest magnitude over the window (negative: the shackle leads).
-        const ShackleRun& inv = fe_inverting;
         study.check("fig-5-20/relative-displacement", std::abs(fe_rotating.relative_peak) / mm,
                     fmt::format("at {:.3f} s; against the paws (Step 5's definition) {:.1f} mm at {:.3f} s; 5 ms drive ramp [R]",
                                 fe_rotating.relative_time, std::abs(fe_rotating.relative_paw_peak) / mm, fe_rotating.relative_paw_time));
         study.check("fig-5-20/time-of-peak", fe_rotating.relative_time);
         study.check("fig-5-21/shackle-stress", fe_rotating.stress_peak / 1e6,
                     fmt::format("largest of the shells' bottom, middle and top points, at {:.4f} s", fe_rotating.stress_time));
-        study.check("fig-5-22/shackle-stress", inv.stress_peak / 1e6,
+        study.check("fig-5-22/shackle-stress", fe_inverting.stress_peak / 1e6,
                     fmt::format("at {:.4f} s; relative displacement {:.1f} mm at {:.3f} s, against the paws {:.1f} mm at {:.3f} s; "
                                 "largest tie gap {:.1f} mm",
-                                inv.stress_time, inv.relative_peak / mm, inv.relative_time, inv.relative_paw_peak / mm,
-                                inv.relative_paw_time, inv.max_tie_gap / mm));
+                                fe_inverting.stress_time, fe_inverting.relative_peak / mm, fe_inverting.relative_time,
+                                fe_inverting.relative_paw_peak / mm, fe_inverting.relative_paw_time, fe_inverting.max_tie_gap / mm));
     }
 
     // ---- Step 5: the Lagrange comparison (Sec 5.4.2, Figs 5-23..5-25) -----------------------------------
@@ -1515,9 +1514,9 @@ void run(check::Study& study) {
             // The thesis's conclusion (Sec 5.4.2): the Lagrange model's response is larger than the FE
             // model's. The one FE number printed is the rotating case's largest bird-shackle relative
             // displacement, 9.5 cm at 0.12 s (Fig 5-20): judge our Lagrange model's relative displacement
-            // against it; and, like with like, against our own FE shackle model (Step 4).
-            // Like with like in both cases (Step 4): the same plane, pivot (the paw) and damping (alpha =
-            // 100 1/s on absolute velocities); the FE's relative displacement against its paws' mean.
+            // against it. And in both cases like with like, against our own FE shackle model (Step 4): the
+            // same plane, pivot (the paw) and damping (alpha = 100 1/s on absolute velocities); the FE's
+            // relative displacement against its paws' mean.
             const ShackleRun& fe = rotating ? fe_rotating : fe_inverting;
             study.trend_holds(fig + "/lagrange-exceeds-our-fe", std::abs(damped.relative_peak) > std::abs(fe.relative_paw_peak),
                               fmt::format("Lagrange (alpha = 100 1/s) {:.1f} mm at {:.3f} s over 0.5 s vs our FE {:.1f} mm at {:.3f} s "
@@ -1570,9 +1569,9 @@ int main(int argc, char** argv) {
             const double scaling = op.size() > 2 ? std::atof(op[2].c_str()) : kShackleMassScalingDt;
             const double ramp = op.size() > 3 ? std::atof(op[3].c_str()) : 0.0;
             const std::string frame = op.size() > 4 ? op[4] : "absolute";
-            if (frame != "absolute" && frame != "drive")
-                throw InputError(fmt::format("--shackle: the damping frame '{}' is neither 'absolute' nor 'drive'", frame));
             return run_program("chicken_shackling --shackle", [&] {
+                if (frame != "absolute" && frame != "drive")
+                    throw InputError(fmt::format("--shackle: the damping frame '{}' is neither 'absolute' nor 'drive'", frame));
                 const std::string name = fmt::format("shackle-{}", rotating ? "rotating" : "inverting");
                 io::RunFolder out(check::side_run_folder("chicken_shackling", name, args), "chicken_shackling --shackle");
                 const chicken::Chicken bird = chicken::table_5_3_chicken();
