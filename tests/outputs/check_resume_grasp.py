@@ -7,6 +7,8 @@ run is started into another folder and killed with SIGKILL as soon as its first 
 resumed with `--resume`: the record grasp-case-4.dat (written row by row, read back up to the dump),
 the VTU series, its .pvd and the end surfaces must equal the reference byte for byte, and the end
 dump must be the only dump left. `--resume` with no killed run is refused (exit 2) saying why.
+The reference record then goes through `--grasp-verdicts`, which regenerates Table 5-4 from
+records (table-5-4.md): Case 4's row says it ran to 3 ms, with the drum angle 45 rpm turns in it.
 
 usage: check_resume_grasp.py CHICKEN_SHACKLING WORK_DIR
 """
@@ -64,6 +66,19 @@ def main():
     if len(rows) != 4 or len(compared) < 7:
         fail(f"the record has {len(rows)} rows (4 expected: 0..3 ms) and {len(compared)} files were compared")
     print(f"resumed: {len(compared)} files byte-identical to the uninterrupted run's ({len(rows)} record rows)")
+
+    verdicts = os.path.join(work, "verdicts")
+    judged = subprocess.run([program, "--grasp-verdicts", os.path.join(ref, "grasp-case-4.dat"), "--results", verdicts],
+                            capture_output=True, text=True)
+    table = os.path.join(verdicts, "table-5-4.md")
+    if judged.returncode != 0 or not os.path.exists(table):
+        fail("--grasp-verdicts on the reference record failed:\n" + judged.stdout + judged.stderr)
+        return
+    row = [l for l in read(table).decode().splitlines() if l.startswith("| 4 ")]
+    # 45 rpm for 3 ms: 45 * 360 / 60 * 0.003 = 0.81 deg, printed to 0.1 deg
+    if len(row) != 1 or not row[0].startswith("| 4 (run to 0.003 s) | 45 / 20 / 40 | 0.8 |"):
+        fail(f"table-5-4.md's Case 4 row: {row}")
+    print("table-5-4.md: " + row[0][:60])
 
 
 if __name__ == "__main__":
