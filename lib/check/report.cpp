@@ -55,12 +55,22 @@ std::string value_text(const nlohmann::json& v) {
     if (v.is_null()) return "(none)";
     if (v.is_number()) return number(v.get<double>());
     if (v.is_string()) return v.get<std::string>();
+    if (v.is_boolean()) return v.get<bool>() ? "yes" : "no";
     if (v.is_array()) {
+        // A list of objects (a run's contact interfaces, its parts) one after the other: ';' between them.
+        const bool objects = !v.empty() && v.front().is_object();
         std::string out;
-        for (const auto& x : v) out += (out.empty() ? "" : ", ") + value_text(x);
+        for (const auto& x : v) out += (out.empty() ? "" : objects ? "; " : ", ") + value_text(x);
         return out;
     }
-    return v.dump();
+    // An object (a run's timing table, one contact interface) as "name: key value, key value", its
+    // name first, for a reader rather than as JSON.
+    std::string out = v.contains("name") && v["name"].is_string() ? v["name"].get<std::string>() + ":" : "";
+    for (const auto& [key, x] : v.items()) {
+        if (key == "name") continue;
+        out += (out.empty() ? "" : out.back() == ':' ? " " : ", ") + key + " " + value_text(x);
+    }
+    return out.empty() ? "(none)" : out;
 }
 
 std::string tolerance_text(const CheckRecord& r) {

@@ -388,7 +388,12 @@ TEST(Report, ListsEveryStudyAndTheDiscrepancies) {
     {
         Study study("demo", argv.argc(), argv.data());
         run_demo_as_expected(study);
-        study.record_run({"run 1", {{"steps", 100}, {"wall_s", 0.5}}});
+        study.record_run({"run 1",
+                          {{"steps", 100},
+                           {"wall_s", 0.5},
+                           {"timing_s", {{"elements", 0.25}, {"update", 0.125}}},
+                           {"contact_interfaces", nlohmann::json::array({{{"name", "fingers on ball"}, {"forces_s", 0.0625}},
+                                                                         {{"name", "ball on floor"}, {"forces_s", 0.5}}})}}});
         EXPECT_EQ(study.finish(), 0);
     }
     // A second reference file without results: listed as not run.
@@ -409,6 +414,10 @@ TEST(Report, ListsEveryStudyAndTheDiscrepancies) {
     EXPECT_NE(md.find("| other |"), std::string::npos);
     EXPECT_NE(md.find("not run"), std::string::npos);
     EXPECT_NE(md.find("Solver runs"), std::string::npos);
+    // A run's objects read as words, not JSON: the timing table, the contact interfaces by name.
+    EXPECT_NE(md.find("| elements 0.25, update 0.125 |"), std::string::npos);
+    EXPECT_NE(md.find("| fingers on ball: forces_s 0.0625; ball on floor: forces_s 0.5 |"), std::string::npos);
+    EXPECT_EQ(md.find("{\"elements\""), std::string::npos);
     // Headline by kind, reproduction first: series 3 + miss + 3 modes = 7 reproduction records, 5 pass.
     EXPECT_NE(md.find("Reproduction: 5 of 7 thesis results reproduced by our models, 2 not reproduced (known misses), 0 failed"),
               std::string::npos) << md.substr(0, 2000);
