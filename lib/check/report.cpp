@@ -167,19 +167,42 @@ nlohmann::json read_json(const std::filesystem::path& path) {
     }
 }
 
-// Thesis order of items: by chapter, then tables/figures/equations/appendices, then number.
+// Thesis order of items: by chapter (the appendices, lettered, after the chapters), then tables,
+// figures, equations, sections, appendices, then number: "Table 5-4" before "Fig 5-10" before
+// "Sec 5.4.2, Figs 5-20, 5-24"; "Fig D-2" and "App E" after every chapter.
 std::string item_sort_key(const std::string& item) {
-    std::string key;
-    int number_run = 0;
+    const std::size_t space = item.find(' ');
+    std::string chapter = "~";  // no chapter: last
+    for (std::size_t i = space == std::string::npos ? item.size() : space + 1; i < item.size(); ++i) {
+        const unsigned char c = item[i];
+        if (std::isdigit(c)) {
+            std::size_t end = i;
+            while (end < item.size() && std::isdigit(static_cast<unsigned char>(item[end]))) ++end;
+            chapter = std::string(6 - std::min<std::size_t>(6, end - i), '0') + item.substr(i, end - i);
+            break;
+        }
+        if (std::isupper(c)) {
+            chapter = std::string("~") + item[i];  // an appendix
+            break;
+        }
+    }
+    char kind = '5';
+    for (const auto& [prefix, rank] : {std::pair{"Table", '0'}, {"Fig", '1'}, {"Eq", '2'}, {"Sec", '3'}, {"App", '4'}})
+        if (item.rfind(prefix, 0) == 0) {
+            kind = rank;
+            break;
+        }
+    // Then the numbers after the kind's word ("Figs 5-10, 5-11" between "Fig 5-6" and "Fig 5-11"),
+    // zero-padded so that 5-4 sorts before 5-10; the whole item breaks ties.
+    std::string key = chapter + kind;
     std::string digits;
     auto flush = [&]() {
         if (!digits.empty()) {
             key += std::string(6 - std::min<std::size_t>(6, digits.size()), '0') + digits;
             digits.clear();
-            ++number_run;
         }
     };
-    for (char c : item) {
+    for (char c : item.substr(space == std::string::npos ? item.size() : space) + "\x01" + item) {
         if (std::isdigit(static_cast<unsigned char>(c))) digits += c;
         else {
             flush();
@@ -188,6 +211,16 @@ std::string item_sort_key(const std::string& item) {
     }
     flush();
     return key;
+}
+
+// Does the report item `item` (a check's source, "Table 2-2, Fig 2-5") name the figure item
+// `figure` ("Table 2-2")? Whole numbers only: "Fig 5-14" does not name "Fig 5-1".
+bool names_item(const std::string& item, const std::string& figure) {
+    for (std::size_t at = item.find(figure); at != std::string::npos; at = item.find(figure, at + 1)) {
+        const std::size_t end = at + figure.size();
+        if (end == item.size() || !std::isdigit(static_cast<unsigned char>(item[end]))) return true;
+    }
+    return false;
 }
 
 }  // namespace
@@ -458,21 +491,28 @@ int write_report(const ReportInputs& in) {
             paragraph("Not run: no build/results/" + s.name + "/checks.json. Run `make " + s.name + "`.");
             continue;
         }
-        // Items in thesis order; an item's figures come first, then its checks.
+        // Items in thesis order; an item's figures come first, then its checks. A figure item (reference
+        // [figures]) belongs to the first checked item that names it ("Table 2-2" to "Table 2-2, Fig 2-5");
+        // one that none names is an item of its own, in its place in the order.
         std::map<std::string, std::vector<const CheckRecord*>> items;
         for (const auto& r : s.records) items[item_sort_key(r.source) + "\x01" + r.source].push_back(&r);
-        std::map<std::string, bool> figure_item_done;
+        const auto item_of = [](const std::string& key) { return key.substr(key.rfind('\x01') + 1); };
+        if (s.reference)
+            for (const auto& [fig_item, files] : s.reference->figures) {
+                const bool named = std::ranges::any_of(items, [&](const auto& i) { return names_item(item_of(i.first), fig_item); });
+                if (!named) items.try_emplace(item_sort_key(fig_item) + "\x01" + fig_item);
+            }
+        std::set<std::string> figure_item_done;
         for (const auto& [key, records] : items) {
-            const std::string item = key.substr(key.find('\x01') + 1);
+            const std::string item = item_of(key);
             heading(3, item);
             if (s.reference) {
                 for (const auto& [fig_item, files] : s.reference->figures) {
-                    // A figure belongs to an item when the item names it ("Table 2-2, Fig 2-5").
-                    if (item.find(fig_item) == std::string::npos && fig_item != item) continue;
-                    figure_item_done[fig_item] = true;
+                    if (!names_item(item, fig_item) || !figure_item_done.insert(fig_item).second) continue;
                     for (const auto& file : files) add_figure(fig_item, file);
                 }
             }
+            if (records.empty()) continue;  // a figure item without checks
             add_curve_plots(s.name, records);
             Block table{Block::Table};
             table.header = {"check", "kind", "quantity", "unit", "basis", "thesis", "ours", "deviation", "tolerance", "verdict", "note"};
@@ -493,13 +533,6 @@ int write_report(const ReportInputs& in) {
             }
             doc.push_back(table);
         }
-        // Figures not tied to any checked item.
-        if (s.reference)
-            for (const auto& [fig_item, files] : s.reference->figures)
-                if (!figure_item_done[fig_item]) {
-                    heading(3, fig_item);
-                    for (const auto& file : files) add_figure(fig_item, file);
-                }
         if (!s.runs.empty()) {
             heading(3, "Solver runs");
             std::vector<std::string> keys;

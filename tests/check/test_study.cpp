@@ -380,6 +380,73 @@ TEST(Study, RefusesUnknownIdsAndOptions) {
     EXPECT_THROW(Study("demo", 2, bad_argv), fem::InputError);
 }
 
+// Items in thesis order (chapter, then tables before figures before sections, then number: 9-4
+// before 9-12), and a figure item under the checked item that names it by its whole number: "Fig 9-1"
+// is not "Fig 9-12"'s, so it is an item of its own, in its place.
+TEST(Report, ItemsInThesisOrderAndFiguresByWholeNumber) {
+    TempDir dir;
+    fs::create_directories(dir.path / "reference");
+    write(dir.path / "reference" / "order.toml", R"toml(
+study = "order"
+title = "Order"
+[figures]
+"Fig 9-1" = ["fig-9-1.md"]
+"Table 9-4" = ["table-9-4.md"]
+"Fig 9-12" = ["fig-9-12.md"]
+
+[[check]]
+id = "sec/a"
+source = "Sec 9.2"
+quantity = "a"
+basis = "exact"
+kind = "consistency"
+thesis = 1.0
+tolerance = { abs = 0.5 }
+reason = "r"
+
+[[check]]
+id = "fig-9-12/a"
+source = "Fig 9-12"
+quantity = "a"
+basis = "exact"
+kind = "consistency"
+thesis = 1.0
+tolerance = { abs = 0.5 }
+reason = "r"
+
+[[check]]
+id = "fig-9-4/a"
+source = "Fig 9-4"
+quantity = "a"
+basis = "exact"
+kind = "consistency"
+thesis = 1.0
+tolerance = { abs = 0.5 }
+reason = "r"
+)toml");
+    DemoArgs argv(dir.path / "reference" / "order.toml", dir.path / "results" / "order");
+    argv.storage[0] = "order";
+    {
+        Study study("order", argv.argc(), argv.data());
+        for (const char* id : {"sec/a", "fig-9-12/a", "fig-9-4/a"}) study.check(id, 1.0);
+        EXPECT_EQ(study.finish(), 0);
+    }
+    fs::create_directories(dir.path / "figures");
+    write(dir.path / "figures" / "fig-9-1.md", "| one |\n|---|\n| 1 |\n");
+    write(dir.path / "figures" / "table-9-4.md", "| four |\n|---|\n| 4 |\n");
+    write(dir.path / "figures" / "fig-9-12.md", "| twelve |\n|---|\n| 12 |\n");
+    EXPECT_EQ(write_report({dir.path / "reference", dir.path / "results", dir.path / "figures"}), 0);
+    std::ifstream md_in(dir.path / "figures" / "REPORT.md");
+    const std::string md((std::istreambuf_iterator<char>(md_in)), {});
+    std::vector<std::size_t> at;
+    for (const char* h : {"### Table 9-4\n", "| four |", "### Fig 9-1\n", "| one |", "### Fig 9-4\n", "### Fig 9-12\n", "| twelve |",
+                          "### Sec 9.2\n"}) {
+        at.push_back(md.find(h));
+        EXPECT_NE(at.back(), std::string::npos) << h;
+    }
+    EXPECT_TRUE(std::is_sorted(at.begin(), at.end())) << md.substr(md.find("## order"));
+}
+
 TEST(Report, ListsEveryStudyAndTheDiscrepancies) {
     TempDir dir;
     fs::create_directories(dir.path / "reference");
