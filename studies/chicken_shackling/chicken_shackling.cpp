@@ -799,7 +799,7 @@ std::string table_5_4_markdown(const std::vector<GraspMeasures>& cases) {
     // Sec 5.4.1 on each case (Fig 5-10, 5-11 text).
     static constexpr std::array<const char*, 5> kThesisSays = {
         "too slow: the fingers hit the body", "too slow: the fingers hit the body", "too fast",
-        "grasps after slowing at 0.55 s; the only one released onto the shackle by 1.1 s; **optimal**",
+        "grasps after slowing at 0.55 s; the only one released onto the shackle by 1.1 s; the optimal case",
         "grasps after slowing at 0.55 s"};
     std::string t =
         "| case | drum (rpm) over 0-0.55 / 0.55-0.85 / 0.85-1.1 s | drum turned (deg) | the thesis (Sec 5.4.1) | "
