@@ -171,6 +171,8 @@ nlohmann::json read_json(const std::filesystem::path& path) {
 // figures, equations, sections, appendices, then number: "Table 5-4" before "Fig 5-10" before
 // "Sec 5.4.2, Figs 5-20, 5-24"; "Fig D-2" and "App E" after every chapter.
 std::string item_sort_key(const std::string& item) {
+    // A run of digits zero-padded to 6, so that text order is number order (5-4 before 5-10).
+    const auto padded = [](const std::string& digits) { return std::string(6 - std::min<std::size_t>(6, digits.size()), '0') + digits; };
     const std::size_t space = item.find(' ');
     std::string chapter = "~";  // no chapter: last
     for (std::size_t i = space == std::string::npos ? item.size() : space + 1; i < item.size(); ++i) {
@@ -178,7 +180,7 @@ std::string item_sort_key(const std::string& item) {
         if (std::isdigit(c)) {
             std::size_t end = i;
             while (end < item.size() && std::isdigit(static_cast<unsigned char>(item[end]))) ++end;
-            chapter = std::string(6 - std::min<std::size_t>(6, end - i), '0') + item.substr(i, end - i);
+            chapter = padded(item.substr(i, end - i));
             break;
         }
         if (std::isupper(c)) {
@@ -198,7 +200,7 @@ std::string item_sort_key(const std::string& item) {
     std::string digits;
     auto flush = [&]() {
         if (!digits.empty()) {
-            key += std::string(6 - std::min<std::size_t>(6, digits.size()), '0') + digits;
+            key += padded(digits);
             digits.clear();
         }
     };

@@ -681,6 +681,10 @@ struct GraspMeasures {
     double oscillation = 0.0;        // peak-to-peak of body y - perch y over 0.3-0.9 s [m]
     double grasp_force_peak = 0.0;   // largest fingers-on-bird force over 0-0.9 s [N]
     double release_force = 0.0;      // largest fingers-on-bird force over the last 10 ms [N]
+    /// The finger (0..4, A..E) with the largest von Mises stress of the run.
+    std::size_t most_stressed_finger() const {
+        return static_cast<std::size_t>(std::max_element(stress_peak.begin(), stress_peak.end()) - stress_peak.begin());
+    }
 };
 
 GraspMeasures measure_grasp(const GraspRun& r) {
@@ -739,7 +743,7 @@ std::vector<GraspFinding> grasp_findings(const std::vector<GraspMeasures>& cases
         f.push_back({"fig-5-13/theta-b-min", c4->theta_end / deg, false, fmt::format("Case 4, at {:.3f} s", c4->end_time)});
         f.push_back({"fig-5-14/tip-e", c4->tip_peak[4] / mm, false, fmt::format("Case 4, at {:.3f} s", c4->tip_time[4])});
         f.push_back({"fig-5-14/tip-e-time", c4->tip_time[4], false, fmt::format("Case 4, {:.1f} mm", c4->tip_peak[4] / mm)});
-        const auto s = std::max_element(c4->stress_peak.begin(), c4->stress_peak.end()) - c4->stress_peak.begin();
+        const std::size_t s = c4->most_stressed_finger();
         f.push_back({"fig-5-15/finger-stress", c4->stress_peak[s] / 1e6, false,
                      fmt::format("Case 4, finger {} at {:.3f} s", GraspRun::kFingers[s], c4->stress_time[s])});
         const auto tip = std::max_element(c4->tip_peak.begin(), c4->tip_peak.end()) - c4->tip_peak.begin();
@@ -809,7 +813,7 @@ std::string table_5_4_markdown(const std::vector<GraspMeasures>& cases) {
         "|---|---|---|---|---|---|---|---|---|---|---|---|\n";
     for (const GraspMeasures& m : cases) {
         const GraspCase& c = kTable54.at(m.case_number - 1);
-        const auto s = std::max_element(m.stress_peak.begin(), m.stress_peak.end()) - m.stress_peak.begin();
+        const std::size_t s = m.most_stressed_finger();
         const std::string until = m.end_time < kGraspEnd - 1e-6 ? fmt::format(" (run to {:.3f} s)", m.end_time) : "";
         t += fmt::format("| {}{} | {:g} / {:g} / {:g} | {:.1f} | {} | {:.1f} | {:.1f} | {:.1f} | {:.1f} | {:.1f} at {:.3f} | {:.1f} | "
                          "{:.1f} at {:.3f} | {:.2f} ({}) |\n",

@@ -386,49 +386,17 @@ TEST(Study, RefusesUnknownIdsAndOptions) {
 TEST(Report, ItemsInThesisOrderAndFiguresByWholeNumber) {
     TempDir dir;
     fs::create_directories(dir.path / "reference");
-    write(dir.path / "reference" / "order.toml", R"toml(
-study = "order"
-title = "Order"
-[figures]
-"Fig 9-1" = ["fig-9-1.md"]
-"Table 9-4" = ["table-9-4.md"]
-"Fig 9-12" = ["fig-9-12.md"]
-
-[[check]]
-id = "sec/a"
-source = "Sec 9.2"
-quantity = "a"
-basis = "exact"
-kind = "consistency"
-thesis = 1.0
-tolerance = { abs = 0.5 }
-reason = "r"
-
-[[check]]
-id = "fig-9-12/a"
-source = "Fig 9-12"
-quantity = "a"
-basis = "exact"
-kind = "consistency"
-thesis = 1.0
-tolerance = { abs = 0.5 }
-reason = "r"
-
-[[check]]
-id = "fig-9-4/a"
-source = "Fig 9-4"
-quantity = "a"
-basis = "exact"
-kind = "consistency"
-thesis = 1.0
-tolerance = { abs = 0.5 }
-reason = "r"
-)toml");
+    std::string toml = "study = \"order\"\ntitle = \"Order\"\n[figures]\n\"Fig 9-1\" = [\"fig-9-1.md\"]\n"
+                       "\"Table 9-4\" = [\"table-9-4.md\"]\n\"Fig 9-12\" = [\"fig-9-12.md\"]\n";
+    const std::vector<std::pair<std::string, std::string>> checks = {{"sec/a", "Sec 9.2"}, {"fig-9-12/a", "Fig 9-12"}, {"fig-9-4/a", "Fig 9-4"}};
+    for (const auto& [id, source] : checks)
+        toml += "\n[[check]]\nid = \"" + id + "\"\nsource = \"" + source +
+                "\"\nquantity = \"a\"\nbasis = \"exact\"\nkind = \"consistency\"\nthesis = 1.0\ntolerance = { abs = 0.5 }\nreason = \"r\"\n";
+    write(dir.path / "reference" / "order.toml", toml);
     DemoArgs argv(dir.path / "reference" / "order.toml", dir.path / "results" / "order");
-    argv.storage[0] = "order";
     {
         Study study("order", argv.argc(), argv.data());
-        for (const char* id : {"sec/a", "fig-9-12/a", "fig-9-4/a"}) study.check(id, 1.0);
+        for (const auto& [id, source] : checks) study.check(id, 1.0);
         EXPECT_EQ(study.finish(), 0);
     }
     fs::create_directories(dir.path / "figures");
