@@ -47,16 +47,20 @@ FULL_FIRST := chicken_shackling football_sweep finger_damping
 FULL_ORDER := $(filter $(FULL_FIRST),$(STUDIES)) $(filter-out $(FULL_FIRST),$(STUDIES))
 # (The sub-make has its own recipe line: `make -n all` runs a line naming $(MAKE), so nothing else may share it.)
 all: deps build
+	@echo "== the $(words $(STUDIES)) studies --full, $(JOBS) at a time, the longest first: each study's output is printed when it ends;"; \
+	echo "   meanwhile: tail -f $(BUILD)/logs/<study>.log"
 	@$(MAKE) --no-print-directory -k -j $(JOBS) --output-sync=target $(addprefix full-,$(FULL_ORDER)); echo $$? > $(BUILD)/.studies-status
 	@status=$$(cat $(BUILD)/.studies-status 2>/dev/null || echo 1); \
 	$(BUILD)/bin/fem-report --reference reference --results $(BUILD)/results --figures figures; \
 	$(REPORT_PAGE) || status=1; \
 	exit $$status
 
-# One study's whole run (--full) for `make all`, timed: the line printed at its end says how long it took.
+# One study's whole run (--full) for `make all`: its output goes to $(BUILD)/logs/<study>.log as it runs
+# and is printed whole at its end, with when it started and how long it took.
 $(addprefix full-,$(STUDIES)): full-%:
-	@echo "== $* --full (started $$(date -u +%H:%M:%S))"; start=$$(date +%s); \
-	$(BUILD)/bin/$* --figures figures --full; status=$$?; \
+	@mkdir -p $(BUILD)/logs; echo "== $* --full (started $$(date -u +%H:%M:%S))"; start=$$(date +%s); \
+	$(BUILD)/bin/$* --figures figures --full > $(BUILD)/logs/$*.log 2>&1; status=$$?; \
+	cat $(BUILD)/logs/$*.log; \
 	echo "== $* --full: exit $$status after $$(( $$(date +%s) - start )) s"; exit $$status
 
 test: deps build
