@@ -44,7 +44,7 @@ STUDIES := $(sort $(notdir $(patsubst %/,%,$(dir $(wildcard studies/*/CMakeLists
 # results and figures, so running two at once changes no file (CTest runs them side by side too). Each
 # study's output is printed whole when it ends (--output-sync), not interleaved with the other's.
 FULL_FIRST := chicken_shackling football_sweep finger_damping
-FULL_ORDER := $(filter $(FULL_FIRST),$(STUDIES)) $(filter-out $(FULL_FIRST),$(STUDIES))
+FULL_ORDER := $(foreach s,$(FULL_FIRST),$(filter $(s),$(STUDIES))) $(filter-out $(FULL_FIRST),$(STUDIES))
 # (The sub-make has its own recipe line: `make -n all` runs a line naming $(MAKE), so nothing else may share it.)
 all: deps build
 	@echo "== the $(words $(STUDIES)) studies --full, $(JOBS) at a time, the longest first: each study's output is printed when it ends;"; \
