@@ -243,7 +243,7 @@ void BM_ShellInternalForces(benchmark::State& state) {
     s.rotation.assign(mesh.node_count(), Mat3::Identity());
     g.initialize(s);
     const double load = load1();
-    double cpu = 0.0;
+    double cpu = 0.0, wall = 0.0;
     long passes = 0;
     for (auto _ : state) {
         // A fresh small step each pass (the group's increments are against its last evaluation).
@@ -254,8 +254,10 @@ void BM_ShellInternalForces(benchmark::State& state) {
         }
         state.ResumeTiming();
         const double cpu0 = cpu_seconds();
+        const auto t0 = std::chrono::steady_clock::now();
         auto r = g.internal_forces(s, with_dt);
         cpu += cpu_seconds() - cpu0;
+        wall += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         ++passes;
         benchmark::DoNotOptimize(r);
     }
@@ -265,6 +267,11 @@ void BM_ShellInternalForces(benchmark::State& state) {
     state.counters["elem_cycles_per_cpu_s"] = static_cast<double>(passes) * g.size() / cpu;
     state.counters["threads"] = par::threads();
     state.counters["load1"] = load;
+    if (with_dt) {
+        const double cycles = static_cast<double>(passes) * g.size();
+        table()[{"shell BT forces + step", par::threads()}] =
+            Row{static_cast<double>(g.size()), static_cast<double>(mesh.node_count()), cycles / cpu, cycles / wall, load};
+    }
 }
 BENCHMARK(BM_ShellInternalForces)
     ->Args({1, 1})->Args({2, 1})->Args({1, 0})->Args({2, 0})->ArgNames({"threads", "dt"})
@@ -304,6 +311,9 @@ void BM_ShellSolverSteps(benchmark::State& state) {
     state.counters["load1"] = load;
     state.counters["setup_s"] = setup_s;
     state.counters["threads"] = par::threads();
+    table()[{"shell BT solver step", par::threads()}] = Row{static_cast<double>(shell_mesh().size()),
+                                                           static_cast<double>(shell_mesh().node_count()),
+                                                           cycles_per_cpu_s, cycles_per_s, load};
 }
 BENCHMARK(BM_ShellSolverSteps)->Arg(1)->Arg(2)->ArgName("threads")->UseManualTime()->Unit(benchmark::kMillisecond)
     ->Iterations(2);
