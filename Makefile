@@ -39,10 +39,11 @@ STUDIES := $(sort $(notdir $(patsubst %/,%,$(dir $(wildcard studies/*/CMakeLists
 
 # Runs every study even when one fails (-k), writes the report, then reports failure if any study failed.
 # The studies run JOBS at a time, the longest first (FULL_FIRST): chicken_shackling's --full is ~70 % of
-# the CPU time and leaves part of a core idle between its runs, which the other studies fill; one after
-# another the cores stood ~34 % idle: 1 h 30 min 34 s, two at a time 1 h 18 min 50 s (PERFORMANCE.md). Every study writes its own
-# results and figures, so running two at once changes no file (CTest runs them side by side too). Each
-# study's output is printed whole when it ends (--output-sync), not interleaved with the other's.
+# the CPU time and leaves part of a core idle between its runs, which the other studies fill. One after
+# another the cores stood ~34 % idle (1 h 30 min 34 s); two at a time 1 h 18 min 50 s, 96 % busy
+# (PERFORMANCE.md). Every study writes its own results and figures, so running two at once changes no
+# file (CTest runs them side by side too). Each study's output is printed whole when it ends
+# (--output-sync), not interleaved with the other's.
 FULL_FIRST := chicken_shackling football_sweep finger_damping
 FULL_ORDER := $(foreach s,$(FULL_FIRST),$(filter $(s),$(STUDIES))) $(filter-out $(FULL_FIRST),$(STUDIES))
 # (The sub-make has its own recipe line: `make -n all` runs a line naming $(MAKE), so nothing else may share it.)
