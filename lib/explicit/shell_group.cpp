@@ -195,7 +195,8 @@ double ShellGroup::measure_omega_max() const {
             for (int d = 0; d < 6; ++d)
                 sc[6 * a + d] = 1.0 / std::sqrt(mass_scale_[e] * (d < 3 ? mass_[e].mass[a] : mass_[e].inertia[a]));
         A = sc.asDiagonal() * A * sc.asDiagonal();
-        Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(0.5 * (A + A.transpose()), Eigen::EigenvaluesOnly);
+        const Eigen::MatrixXd symmetric = 0.5 * (A + A.transpose());  // a named matrix: core/eigen_instances.hpp
+        Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(symmetric, Eigen::EigenvaluesOnly);
         wmax = std::max(wmax, std::sqrt(eig.eigenvalues().maxCoeff()));
     }
     std::fprintf(stderr, "shell part '%s': stability measurement did not converge; element bound used\n", part.c_str());

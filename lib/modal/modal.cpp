@@ -183,7 +183,8 @@ bool dense_modes(const SpMat& K, const SpMat& M, int modes, ModalResult& r) {
     if (llt.info() != Eigen::Success) return false;
     Eigen::MatrixXd C = llt.matrixL().solve(Md);
     C = llt.matrixL().solve(Eigen::MatrixXd(C.transpose()));
-    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(0.5 * (C + C.transpose()));
+    const Eigen::MatrixXd symmetric = 0.5 * (C + C.transpose());  // a named matrix: core/eigen_instances.hpp
+    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(symmetric);
     if (es.info() != Eigen::Success) return false;
     const Eigen::VectorXd& mu = es.eigenvalues();  // ascending: the largest mu (nearest the shift) last
     if (!(mu(n - modes) > 1e-12 * std::abs(mu(n - 1)))) return false;

@@ -435,7 +435,8 @@ TEST(ShellBtKernel, RotationalInertiaKeepsRotationsOutOfTheTimeStep) {
         for (int a = 0; a < n; ++a)
             for (int d = 0; d < 6; ++d) minv[6 * a + d] = 1.0 / std::sqrt(d < 3 ? lm.mass[a] : lm.inertia[a]);
         const Eigen::MatrixXd A = minv.asDiagonal() * Kd * minv.asDiagonal();
-        Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(0.5 * (A + A.transpose()));
+        const Eigen::MatrixXd symmetric = 0.5 * (A + A.transpose());  // a named matrix: core/eigen_instances.hpp
+        Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(symmetric);
         const double wmax = std::sqrt(eig.eigenvalues().maxCoeff());
         // The same with the rotational rows only (translations held): what the scaling controls.
         Eigen::MatrixXd Ar(3 * n, 3 * n);

@@ -1,0 +1,31 @@
+#pragma once
+// Eigen's symmetric eigen-solvers, compiled once for the whole project (eigen_instances.cpp) instead
+// of in every translation unit that uses them.
+//
+// Why: instantiating Eigen::SelfAdjointEigenSolver / GeneralizedSelfAdjointEigenSolver (the
+// tridiagonalization, the Householder sequences, the implicit QR) is the heaviest template work of
+// the build. Measured 2026-12-04 (GCC 12, -O3, one unit): studies/cfl_tables/cfl_tables.cpp took
+// 22.7 s of CPU with them instantiated in the unit, 5.5 s with the declarations below. About a dozen
+// units use them (lib/element, lib/explicit, lib/modal, lib/multibody, two studies, six test programs).
+//
+// The declarations cover the matrix types the project uses (MatrixXd and, for the lumped bird's 2 x 2
+// problem, Matrix2d) and the solver's constructor and compute() taking that same matrix type. A call
+// with an expression (say `SelfAdjointEigenSolver<MatrixXd> es(0.5 * (A + A.transpose()))`)
+// instantiates compute() for the expression's type in its own unit again: name the matrix first.
+// Results are the same bits either way: the same IEEE operations, compiled with the same flags.
+#include <Eigen/Core>
+#include <Eigen/Eigenvalues>
+
+extern template class Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>;
+extern template class Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>;
+extern template class Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd>;
+extern template class Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::Matrix2d>;
+// The member templates (an explicit instantiation of the class leaves them out).
+extern template Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>::SelfAdjointEigenSolver(
+    const Eigen::EigenBase<Eigen::MatrixXd>&, int);
+extern template Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>&
+Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>::compute<Eigen::MatrixXd>(const Eigen::EigenBase<Eigen::MatrixXd>&, int);
+extern template Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>::SelfAdjointEigenSolver(
+    const Eigen::EigenBase<Eigen::Matrix2d>&, int);
+extern template Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>&
+Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>::compute<Eigen::Matrix2d>(const Eigen::EigenBase<Eigen::Matrix2d>&, int);
