@@ -346,7 +346,8 @@ TEST(ShellBtKernel, DegenerateTriangleIsTheConstantStrainTriangle) {
     Eigen::Matrix<double, 18, 1> sc = Eigen::Matrix<double, 18, 1>::Ones();
     for (int i = 0; i < 18; ++i)
         if (i % 6 >= 3) sc[i] = 1.0 / 0.01;
-    Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 18, 18>> eig(sc.asDiagonal() * Kt * sc.asDiagonal());
+    const Eigen::MatrixXd scaled = sc.asDiagonal() * Kt * sc.asDiagonal();  // a MatrixXd: core/eigen_instances.hpp
+    Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(scaled);
     int zeros = 0;
     for (int i = 0; i < 18; ++i) zeros += std::abs(eig.eigenvalues()[i]) < 1e-10 * eig.eigenvalues()[17];
     EXPECT_EQ(zeros, 7);

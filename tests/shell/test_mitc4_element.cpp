@@ -35,7 +35,7 @@ Eigen::Matrix<double, 24, 6> rigid_modes(const std::array<Vec3, 4>& x) {
 TEST(Mitc4, StiffnessIsSymmetricAndPositiveSemiDefinite) {
     const auto m = shell::mitc4_matrices(kWarped, 0.05, kShellSteel);
     EXPECT_LT((m.stiffness - m.stiffness.transpose()).norm(), 1e-14 * m.stiffness.norm());
-    Eigen::SelfAdjointEigenSolver<Mat24> eig(m.stiffness);
+    Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(Eigen::MatrixXd(m.stiffness));  // core/eigen_instances.hpp
     EXPECT_GT(eig.eigenvalues().minCoeff(), -1e-10 * eig.eigenvalues().maxCoeff());
 }
 
@@ -46,7 +46,7 @@ TEST(Mitc4, SixRigidBodyModesHaveZeroEnergyAndNoMore) {
         // K R = 0: every rigid motion is stress free (including the drilling penalty).
         EXPECT_LT((m.stiffness * R).norm(), 1e-10 * m.stiffness.norm() * R.norm()) << "t = " << t;
         // Exactly six zero eigenvalues: the seventh is a deformation mode with clear stiffness.
-        Eigen::SelfAdjointEigenSolver<Mat24> eig(m.stiffness);
+        Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(Eigen::MatrixXd(m.stiffness));  // core/eigen_instances.hpp
         const double top = eig.eigenvalues()[23];
         EXPECT_LT(std::abs(eig.eigenvalues()[5]), 1e-12 * top) << "t = " << t;
         EXPECT_GT(eig.eigenvalues()[6], 1e-10 * top) << "t = " << t;
@@ -56,7 +56,7 @@ TEST(Mitc4, SixRigidBodyModesHaveZeroEnergyAndNoMore) {
 TEST(Mitc4, FlatElementHasExactlySixZeroModesToo) {
     const std::array<Vec3, 4> flat = {Vec3(0, 0, 0), Vec3(1.0, 0.2, 0), Vec3(1.3, 1.1, 0), Vec3(0.1, 0.8, 0)};
     const auto m = shell::mitc4_matrices(flat, 0.01, kShellSteel);
-    Eigen::SelfAdjointEigenSolver<Mat24> eig(m.stiffness);
+    Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(Eigen::MatrixXd(m.stiffness));  // core/eigen_instances.hpp
     const double top = eig.eigenvalues()[23];
     EXPECT_LT(std::abs(eig.eigenvalues()[5]), 1e-12 * top);
     EXPECT_GT(eig.eigenvalues()[6], 1e-12 * top);  // drilling penalty removes the drilling zero modes
@@ -95,7 +95,7 @@ TEST(Mitc4, MassAndRotaryInertiaOfARectangle) {
     const double Ix_lumped = rho * t * A * (b * b / 4 + t * t / 12);
     EXPECT_NEAR(R.col(3).dot(m.lumped_mass * R.col(3)), Ix_lumped, 1e-12 * Ix_lumped);
     // Both mass matrices are positive definite (the drilling rotation carries rho t^3/12 A_k).
-    Eigen::SelfAdjointEigenSolver<Mat24> eig(m.consistent_mass);
+    Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(Eigen::MatrixXd(m.consistent_mass));
     EXPECT_GT(eig.eigenvalues().minCoeff(), 0.0);
     EXPECT_GT(m.lumped_mass.diagonal().minCoeff(), 0.0);
 }
