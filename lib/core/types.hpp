@@ -2,8 +2,6 @@
 // Small vocabulary types shared by every part of the library. The library works in SI units.
 #include <Eigen/Dense>
 
-#include "core/eigen_instances.hpp"  // the eigen-solvers compiled once, not in every unit
-
 namespace fem {
 
 using Vec2 = Eigen::Vector2d;

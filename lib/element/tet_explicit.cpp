@@ -7,6 +7,7 @@
 #include <Eigen/Dense>
 #include <fmt/format.h>
 
+#include "core/eigen_instances.hpp"
 #include "core/error.hpp"
 #include "element/solid_elements.hpp"
 // The lane helpers and the material point shared with the hexahedron; it also sets fp-contract=off

@@ -9,6 +9,7 @@
 #include <Spectra/SymEigsSolver.h>
 #include <fmt/format.h>
 
+#include "core/eigen_instances.hpp"
 #include "core/error.hpp"
 
 namespace fem {

@@ -20,6 +20,7 @@
 #include <fmt/format.h>
 
 #include "assembly/model.hpp"
+#include "core/eigen_instances.hpp"
 #include "core/error.hpp"
 #include "core/memory.hpp"
 #include "io/hdf5.hpp"

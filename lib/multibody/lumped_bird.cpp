@@ -9,6 +9,7 @@
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_odeiv2.h>
 
+#include "core/eigen_instances.hpp"
 #include "core/error.hpp"
 #include "damping/gsl_guard.hpp"
 

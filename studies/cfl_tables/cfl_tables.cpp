@@ -23,6 +23,7 @@
 #include <Eigen/Eigenvalues>
 
 #include "check/study.hpp"
+#include "core/eigen_instances.hpp"
 #include "core/units.hpp"
 #include "element/critical_time_step.hpp"
 #include "io/atomic_file.hpp"

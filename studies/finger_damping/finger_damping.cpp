@@ -44,6 +44,7 @@
 
 #include "assembly/model.hpp"
 #include "check/study.hpp"
+#include "core/eigen_instances.hpp"
 #include "core/error.hpp"
 #include "core/program.hpp"
 #include "core/units.hpp"

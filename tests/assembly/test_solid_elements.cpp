@@ -6,6 +6,7 @@
 
 #include <Eigen/Eigenvalues>
 
+#include "core/eigen_instances.hpp"
 #include "core/error.hpp"
 #include "element/solid_elements.hpp"
 #include "mesh/mesh.hpp"

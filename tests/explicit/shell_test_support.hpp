@@ -8,6 +8,7 @@
 #include <cmath>
 #include <vector>
 
+#include "core/eigen_instances.hpp"
 #include "explicit/shell_group.hpp"
 #include "explicit/solver.hpp"
 

@@ -11,6 +11,7 @@
 
 #include <Eigen/Eigenvalues>
 
+#include "core/eigen_instances.hpp"
 #include "core/error.hpp"
 #include "element/critical_time_step.hpp"
 #include "element/shell_bt_explicit.hpp"

@@ -17,6 +17,7 @@
 #include <numbers>
 
 #include "assembly/model.hpp"
+#include "core/eigen_instances.hpp"
 #include "explicit_test_support.hpp"
 #include "modal/modal.hpp"
 #include "shell_test_support.hpp"

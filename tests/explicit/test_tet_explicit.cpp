@@ -16,6 +16,7 @@
 #include <Spectra/MatOp/SparseSymMatProd.h>
 #include <Spectra/SymEigsSolver.h>
 
+#include "core/eigen_instances.hpp"
 #include "explicit_test_support.hpp"
 #include "core/error.hpp"
 #include "element/solid_elements.hpp"

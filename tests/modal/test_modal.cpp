@@ -12,6 +12,7 @@
 
 #include "assembly/model.hpp"
 #include "box_tet10.hpp"
+#include "core/eigen_instances.hpp"
 #include "core/error.hpp"
 #include "io/hdf5.hpp"
 #include "modal/deck_run.hpp"

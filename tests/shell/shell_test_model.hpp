@@ -6,6 +6,7 @@
 
 #include <Eigen/Dense>
 
+#include "core/eigen_instances.hpp"
 #include "element/shell_mitc4.hpp"
 
 namespace shelltest {

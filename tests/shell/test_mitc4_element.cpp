@@ -4,6 +4,7 @@
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 
+#include "core/eigen_instances.hpp"
 #include "core/error.hpp"
 #include "element/shell_mitc4.hpp"
 #include "../test_materials.hpp"

@@ -7,6 +7,7 @@
 
 #include <Eigen/Eigenvalues>
 
+#include "core/eigen_instances.hpp"
 #include "core/error.hpp"
 #include "element/plane_stress.hpp"
 #include "mesh/mesh.hpp"
