@@ -5,8 +5,8 @@
 // Why: instantiating Eigen::SelfAdjointEigenSolver / GeneralizedSelfAdjointEigenSolver (the
 // tridiagonalization, the Householder sequences, the implicit QR) is the heaviest template work of
 // the build. Measured 2026-12-04 (GCC 12, -O3, one unit): studies/cfl_tables/cfl_tables.cpp took
-// 22.7 s of CPU with them instantiated in the unit, 5.5 s with the declarations below. Fifteen
-// files use them (lib/element, lib/explicit, lib/modal, lib/multibody, two studies, five test programs).
+// 22.7 s of CPU with them instantiated in the unit, 5.5 s with the declarations below. Fourteen
+// files use them (lib/element, lib/explicit, lib/modal, lib/multibody, one study, five test programs).
 //
 // Include this header in every file that uses these solvers (a file that does not still compiles and
 // gives the same results, but instantiates them again). It is not in core/types.hpp on purpose: the

@@ -345,7 +345,9 @@ template <int N, int Q, class T, int P>
 // square root: sqrt is monotone, so this is the same maximum).
 template <class T>
 [[gnu::always_inline]] inline T length_of(const T (&x)[3][4]) {
-    auto cross_sq = [&](int a, int b, int c, T (&n)[3]) {
+    // (The squared norm through a reference, not returned: a lambda returning a 64-byte vector
+    // draws GCC's -Wpsabi note in the baseline clone, which no pragma silences.)
+    auto cross_sq = [&](int a, int b, int c, T (&n)[3], T& sq) {
         T p[3], r[3];
         for (int i = 0; i < 3; ++i) {
             p[i] = x[i][b] - x[i][a];
@@ -354,15 +356,16 @@ template <class T>
         n[0] = p[1] * r[2] - p[2] * r[1];
         n[1] = p[2] * r[0] - p[0] * r[2];
         n[2] = p[0] * r[1] - p[1] * r[0];
-        return n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
+        sq = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
     };
-    T n[3];
-    T largest = cross_sq(0, 2, 3, n);  // face opposite node 1; its normal gives the volume below
+    T n[3], largest;
+    cross_sq(0, 2, 3, n, largest);  // face opposite node 1; its normal gives the volume below
     const T e1[3] = {x[0][1] - x[0][0], x[1][1] - x[1][0], x[2][1] - x[2][0]};
     const T v6 = e1[0] * n[0] + e1[1] * n[1] + e1[2] * n[2];  // 6 V (signed)
     const T volume = select(v6 < 0.0, -v6, v6) / 6.0;
     for (const auto& f : {std::array<int, 3>{0, 1, 2}, std::array<int, 3>{0, 1, 3}, std::array<int, 3>{1, 2, 3}}) {
-        const T a = cross_sq(f[0], f[1], f[2], n);
+        T a;
+        cross_sq(f[0], f[1], f[2], n, a);
         largest = select(a > largest, a, largest);
     }
     return 3.0 * volume / (0.5 * lanes::sqrt_lanes(largest));

@@ -36,7 +36,6 @@
 #include <sstream>
 #include <vector>
 
-#include <Eigen/Eigenvalues>
 #include <Spectra/SymEigsSolver.h>
 #include <gsl/gsl_fit.h>
 #include <gsl/gsl_multifit.h>
@@ -44,7 +43,6 @@
 
 #include "assembly/model.hpp"
 #include "check/study.hpp"
-#include "core/eigen_instances.hpp"
 #include "core/error.hpp"
 #include "core/program.hpp"
 #include "core/units.hpp"
@@ -52,6 +50,7 @@
 #include "damping/log_decrement.hpp"
 #include "element/critical_time_step.hpp"
 #include "element/solid_elements.hpp"
+#include "element/tet_explicit.hpp"
 #include "explicit/solver.hpp"
 #include "explicit/tet_groups.hpp"
 #include "io/atomic_file.hpp"
@@ -150,12 +149,10 @@ StepInfo smallest_steps(const Mesh& mesh) {
             if (shape == ElementShape::Tet10) {
                 s.sub_tetrahedra = std::min(s.sub_tetrahedra, cfl::solid_time_step(cfl::tet10_subtetrahedron_length(x),
                                                                                     cfl::wave_speed(shape, kRubber), 0.0, {}));
-                const Eigen::MatrixXd K = solid::tet10_stiffness(x, kRubber);
-                const Eigen::MatrixXd M = solid::tet10_mass(x, kRubber.density, solid::MassKind::Lumped);
-                const Eigen::VectorXd d = M.diagonal().cwiseSqrt().cwiseInverse();
-                const Eigen::MatrixXd A = d.asDiagonal() * K * d.asDiagonal();
-                const double w2 = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(A, Eigen::EigenvaluesOnly).eigenvalues().maxCoeff();
-                s.element_eigen = std::min(s.element_eigen, 2.0 / std::sqrt(w2));
+                // The explicit solver's own element bound (tet::element_omega_max, as TetGroup).
+                const double omega = tet::element_omega_max(solid::tet10_stiffness(x, kRubber),
+                                                            tet::tet10_lumped_mass(x, kRubber.density));
+                s.element_eigen = std::min(s.element_eigen, 2.0 / omega);
             }
         }
     }

@@ -92,7 +92,9 @@ TEST(Modal, Hex20CantileverConvergesToEulerBernoulli) {
             expect_bending(rr);
         }
         EXPECT_LT(rr.frequencies_hz(0), rf.frequencies_hz(0) * (1 + 1e-12)) << n;
-        if (previous > 0) EXPECT_LT(rf.frequencies_hz(0), previous) << "refining lowers the full-integration frequency";
+        if (previous > 0) {
+            EXPECT_LT(rf.frequencies_hz(0), previous) << "refining lowers the full-integration frequency";
+        }
         previous = rf.frequencies_hz(0);
     }
 }
