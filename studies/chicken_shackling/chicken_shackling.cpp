@@ -42,6 +42,7 @@
 //                                                  the side runs' grasp-case-<n>.dat); writes grasp-verdicts/grasp-verdicts.md
 //                                                  and grasp-verdicts/table-5-4.md
 //       (--shackle, --grasp and --grasp-verdicts take --results DIR for another folder; check/side_run.hpp)
+//       (their operands are read whole and checked: a typo is an input error naming it, exit status 2)
 // Out:  build/results/chicken_shackling/{checks.json, runs.json, table-5-2.md, *.dat, *.vtu,
 //       shackle-{rotating,inverting}.{dat,pvd} with their VTU and shackle-<case>-t<time>-{bird,hand}.dat},
 //       figures/{fig-5-1-bird, fig-5-2-skeleton, fig-5-3-limbs, fig-5-19-bird, fig-5-20-fe-rotating-ramp,
@@ -91,6 +92,7 @@
 #include "explicit/solver.hpp"
 #include "explicit/tet_groups.hpp"
 #include "hand/scene.hpp"
+#include "input/numbers.hpp"
 #include "io/atomic_file.hpp"
 #include "io/gnuplot.hpp"
 #include "io/run_folder.hpp"
@@ -1584,17 +1586,14 @@ void run(check::Study& study) {
 int main(int argc, char** argv) {
     // --calibrate [limb ...]: re-derive the limb widths (all three limbs, or the ones listed).
     for (int i = 1; i < argc; ++i)
-        if (std::strcmp(argv[i], "--calibrate") == 0) {
-            std::vector<int> limbs;
-            for (int k = i + 1; k < argc; ++k) limbs.push_back(std::atoi(argv[k]));
-            if (limbs.empty()) limbs = {1, 2, 3};
-            for (int l : limbs)
-                if (l < 1 || l > 3) {
-                    std::cerr << "chicken_shackling --calibrate: limbs are 1, 2, 3\n";
-                    return 2;
-                }
-            return run_program("chicken_shackling --calibrate", [&] { return calibrate(limbs); });
-        }
+        if (std::strcmp(argv[i], "--calibrate") == 0)
+            return run_program("chicken_shackling --calibrate", [&] {
+                std::vector<int> limbs;
+                for (int k = i + 1; k < argc; ++k)
+                    limbs.push_back(input::parse_integer<int>(argv[k], {"command line", 0, "--calibrate (limb)"}, {.min = 1, .max = 3}));
+                if (limbs.empty()) limbs = {1, 2, 3};
+                return calibrate(limbs);
+            });
     // The side runs below write into a folder of their own under the study's results folder (never
     // the current directory; check/side_run.hpp), as one run's set (io::RunFolder). Their operands are
     // the arguments after the option up to the next option (--results DIR may follow).
@@ -1608,15 +1607,30 @@ int main(int argc, char** argv) {
     // run alone; `drive` damps the bird relative to the shackle's drive instead of absolutely.
     for (int i = 1; i < argc; ++i)
         if (std::strcmp(argv[i], "--shackle") == 0) {
-            const std::vector<std::string> op = operands(i);
-            const bool rotating = op.empty() || op[0] != "inverting";
-            const double end = op.size() > 1 ? std::atof(op[1].c_str()) : kShackleWindow;
-            const double scaling = op.size() > 2 ? std::atof(op[2].c_str()) : kShackleMassScalingDt;
-            const double ramp = op.size() > 3 ? std::atof(op[3].c_str()) : 0.0;
-            const std::string frame = op.size() > 4 ? op[4] : "absolute";
             return run_program("chicken_shackling --shackle", [&] {
-                if (frame != "absolute" && frame != "drive")
-                    throw InputError(fmt::format("--shackle: the damping frame '{}' is neither 'absolute' nor 'drive'", frame));
+                // Each operand read whole ("0.1x" is refused, not read as 0.1), each choice checked.
+                const std::vector<std::string> op = operands(i);
+                if (op.size() > 5)
+                    throw InputError(fmt::format("--shackle takes at most five operands (case, end time, mass scaling step, "
+                                                 "drive ramp, damping frame), got {}: '{}'", op.size(), op[5]));
+                const std::vector<std::string> cases = {"rotating", "inverting"}, frames = {"absolute", "drive"};
+                const std::string which = op.empty() ? "rotating" : op[0];
+                if (which != cases[0] && which != cases[1])
+                    input::fail({"command line", 0, "--shackle (case)"},
+                                fmt::format("must be {}, got '{}'{}", input::one_of(cases), which, input::did_you_mean(which, cases)));
+                const bool rotating = which == "rotating";
+                const double end = op.size() > 1 ? input::parse_real(op[1], {"command line", 0, "--shackle (end time)"}, input::Range::positive())
+                                                 : kShackleWindow;
+                const double scaling = op.size() > 2 ? input::parse_real(op[2], {"command line", 0, "--shackle (mass scaling step)"},
+                                                                         input::Range::non_negative())
+                                                     : kShackleMassScalingDt;
+                const double ramp = op.size() > 3 ? input::parse_real(op[3], {"command line", 0, "--shackle (drive ramp)"},
+                                                                      input::Range::non_negative())
+                                                  : 0.0;
+                const std::string frame = op.size() > 4 ? op[4] : "absolute";
+                if (frame != frames[0] && frame != frames[1])
+                    input::fail({"command line", 0, "--shackle (damping frame)"},
+                                fmt::format("must be {}, got '{}'{}", input::one_of(frames), frame, input::did_you_mean(frame, frames)));
                 const std::string name = fmt::format("shackle-{}", rotating ? "rotating" : "inverting");
                 io::RunFolder out(check::side_run_folder("chicken_shackling", name, args), "chicken_shackling --shackle");
                 const chicken::Chicken bird = chicken::table_5_3_chicken();
@@ -1667,49 +1681,37 @@ int main(int argc, char** argv) {
                 out.commit();
                 return 0;
             });
-    // The single number after option k (NaN when there is not exactly one).
-    auto number_after = [&](int k) {
+    // The single number after option k, read whole within `range` (InputError naming the option).
+    auto number_after = [&](int k, input::Range range) {
         const std::vector<std::string> v = operands(k);
-        return v.size() == 1 ? std::atof(v[0].c_str()) : std::nan("");
+        const input::Where at{"command line", 0, argv[k]};
+        if (v.size() != 1) input::fail(at, fmt::format("takes one number, got {}", v.size()));
+        return input::parse_real(v[0], at, range);
     };
     // --grasp <case 1..5> [end time]: one Step 3 case of Table 5-4 alone (the study's --full runs all
     // five: README, Step 3).
     for (int i = 1; i < argc; ++i)
         if (std::strcmp(argv[i], "--grasp") == 0) {
-            const std::vector<std::string> op = operands(i);
-            const int number = !op.empty() ? std::atoi(op[0].c_str()) : 4;
-            const double end = op.size() > 1 ? std::atof(op[1].c_str()) : kGraspEnd;
-            if (number < 1 || number > 5 || !(end > 0.0)) {
-                std::cerr << "chicken_shackling --grasp: the case is 1..5 (Table 5-4) and the end time positive\n";
-                return 2;
-            }
-            GraspRestart restart;
-            GraspVariant variant;
-            for (int k = 1; k < argc; ++k) {
-                if (std::strcmp(argv[k], "--resume") == 0) restart.resume = true;
-                if (std::strcmp(argv[k], "--friction-decay") == 0) {
-                    variant.friction_decay = number_after(k);
-                    if (!(variant.friction_decay >= 0.0)) {
-                        std::cerr << "chicken_shackling --grasp: --friction-decay takes one c_d >= 0 [s/m]\n";
-                        return 2;
-                    }
-                }
-                if (std::strcmp(argv[k], "--drum-phase") == 0) {
-                    variant.drum_phase = number_after(k) * deg;
-                    if (!(std::abs(variant.drum_phase) <= 90.0 * deg)) {
-                        std::cerr << "chicken_shackling --grasp: --drum-phase takes one angle within +-90 [deg]\n";
-                        return 2;
-                    }
-                }
-                if (std::strcmp(argv[k], "--dump-every") == 0) {
-                    restart.dump_every = number_after(k);
-                    if (!(restart.dump_every > 0.0)) {
-                        std::cerr << "chicken_shackling --grasp: --dump-every takes one positive interval [s]\n";
-                        return 2;
-                    }
-                }
-            }
             return run_program("chicken_shackling --grasp", [&] {
+                const std::vector<std::string> op = operands(i);
+                if (op.size() > 2)
+                    throw InputError(fmt::format("--grasp takes at most two operands (case, end time), got {}: '{}'", op.size(), op[2]));
+                const int number = !op.empty() ? input::parse_integer<int>(op[0], {"command line", 0, "--grasp (Table 5-4 case)"},
+                                                                           {.min = 1, .max = 5})
+                                               : 4;
+                const double end = op.size() > 1 ? input::parse_real(op[1], {"command line", 0, "--grasp (end time)"}, input::Range::positive())
+                                                 : kGraspEnd;
+                GraspRestart restart;
+                GraspVariant variant;
+                for (int k = 1; k < argc; ++k) {
+                    if (std::strcmp(argv[k], "--resume") == 0) restart.resume = true;
+                    if (std::strcmp(argv[k], "--friction-decay") == 0)  // c_d [s/m]
+                        variant.friction_decay = number_after(k, input::Range::non_negative());
+                    if (std::strcmp(argv[k], "--drum-phase") == 0)  // [deg]
+                        variant.drum_phase = number_after(k, input::Range::closed(-90.0, 90.0)) * deg;
+                    if (std::strcmp(argv[k], "--dump-every") == 0)  // [s]
+                        restart.dump_every = number_after(k, input::Range::positive());
+                }
                 const std::string name = fmt::format("grasp-case-{}", number);
                 // A sensitivity run gets a folder of its own (its files keep the case's names).
                 const std::string folder = name + variant.suffix();
