@@ -134,6 +134,12 @@ double parse_real(std::string_view text, const Where& where, Range range) {
     return check_real(*v, where, range);
 }
 
+std::string check_choice(std::string_view value, const Where& where, std::span<const std::string> options) {
+    if (std::find(options.begin(), options.end(), value) == options.end())
+        fail(where, fmt::format("'{}' is not {}{}", value, one_of(options), did_you_mean(value, options)));
+    return std::string(value);
+}
+
 std::string did_you_mean(std::string_view name, std::span<const std::string> known) {
     const std::string n = lower(name);
     std::size_t best = std::string::npos;

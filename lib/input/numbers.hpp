@@ -90,6 +90,10 @@ double check_real(double value, const Where& where, Range range);
 long long check_integer(long long value, const Where& where, long long min, long long max);
 /// "an integer >= 1", "an integer in [1, 2147483647]" ...
 std::string describe_integer(long long min, long long max);
+/// Checks that `value` is one of `options` (a keyword choice of a case file or a command line) and
+/// returns it; InputError at `where` otherwise: "'lumpd' is not consistent or lumped (did you mean
+/// 'lumped'?)".
+std::string check_choice(std::string_view value, const Where& where, std::span<const std::string> options);
 
 /// " (did you mean 'modes'?)" when one of `known` is close to `name` (edit distance, case
 /// insensitive), else "". Appended to "unknown key/option/choice" messages.

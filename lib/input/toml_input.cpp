@@ -187,11 +187,8 @@ std::string string_of(const toml::node& n, const Where& at) {
     fail(at, fmt::format("must be a string, got {}", describe(n)));
 }
 
-std::string checked_choice(std::string value, const Where& at, std::initializer_list<std::string_view> options) {
-    const std::vector<std::string> names(options.begin(), options.end());
-    if (std::find(names.begin(), names.end(), value) == names.end())
-        fail(at, fmt::format("'{}' is not {}{}", value, one_of(names), did_you_mean(value, names)));
-    return value;
+std::string checked_choice(const std::string& value, const Where& at, std::initializer_list<std::string_view> options) {
+    return check_choice(value, at, std::vector<std::string>(options.begin(), options.end()));
 }
 
 const toml::array& array_of(const toml::node& n, const Where& at, std::string_view what) {

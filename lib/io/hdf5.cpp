@@ -3,6 +3,7 @@
 #include <H5Cpp.h>
 
 #include <mutex>
+#include <optional>
 
 #include "core/error.hpp"
 #include "io/atomic_file.hpp"
@@ -21,7 +22,7 @@ std::recursive_mutex& hdf5_mutex() {
 struct H5Writer::Impl {
     std::unique_lock<std::recursive_mutex> lock{hdf5_mutex()};  // first: released after the file closes
     std::filesystem::path path, partial;
-    H5::H5File file;
+    std::optional<H5::H5File> file;  // emplaced by the constructor (H5File has no move assignment)
     bool committed = false;
 
     // Dataset creation without modification times (see the constructor).
@@ -37,11 +38,11 @@ struct H5Writer::Impl {
         while ((pos = dataset.find('/', pos + 1)) != std::string::npos) {
             const std::string group = dataset.substr(0, pos);
             if (group.empty()) continue;
-            if (!file.nameExists(group)) {
+            if (!file->nameExists(group)) {
                 H5::LinkCreatPropList lcpl;
                 hid_t gcpl = H5Pcreate(H5P_GROUP_CREATE);
                 H5Pset_obj_track_times(gcpl, false);
-                const hid_t g = H5Gcreate2(file.getId(), group.c_str(), lcpl.getId(), gcpl, H5P_DEFAULT);
+                const hid_t g = H5Gcreate2(file->getId(), group.c_str(), lcpl.getId(), gcpl, H5P_DEFAULT);
                 H5Pclose(gcpl);
                 if (g < 0) throw H5::GroupIException("H5Writer", "cannot create group " + group);
                 H5Gclose(g);
@@ -52,12 +53,12 @@ struct H5Writer::Impl {
     template <class F>
     void with_object(const std::string& name, F&& f) {
         if (name == "/" || name.empty()) {
-            f(static_cast<H5::H5Object&>(file));
-        } else if (file.childObjType(name) == H5O_TYPE_GROUP) {
-            H5::Group g = file.openGroup(name);
+            f(static_cast<H5::H5Object&>(*file));
+        } else if (file->childObjType(name) == H5O_TYPE_GROUP) {
+            H5::Group g = file->openGroup(name);
             f(static_cast<H5::H5Object&>(g));
         } else {
-            H5::DataSet d = file.openDataSet(name);
+            H5::DataSet d = file->openDataSet(name);
             f(static_cast<H5::H5Object&>(d));
         }
     }
@@ -73,7 +74,7 @@ H5Writer::H5Writer(std::filesystem::path path) : impl_(std::make_unique<Impl>())
         // takes its setting from the file creation list, groups and datasets from theirs).
         H5::FileCreatPropList fcpl;
         H5Pset_obj_track_times(fcpl.getId(), false);
-        impl_->file = H5::H5File(impl_->partial.string(), H5F_ACC_TRUNC, fcpl);
+        impl_->file.emplace(impl_->partial.string(), H5F_ACC_TRUNC, fcpl);
     } catch (const H5::Exception& e) {
         throw InputError("cannot create HDF5 file '" + impl_->path.string() + "': " + e.getDetailMsg());
     }
@@ -82,7 +83,7 @@ H5Writer::H5Writer(std::filesystem::path path) : impl_(std::make_unique<Impl>())
 H5Writer::~H5Writer() {
     if (!impl_->committed) {
         try {
-            impl_->file.close();
+            impl_->file->close();
         } catch (...) {
         }
         std::error_code ec;
@@ -94,7 +95,7 @@ void H5Writer::write(const std::string& dataset, const std::vector<double>& valu
     impl_->make_parents(dataset);
     hsize_t dims[1] = {values.size()};
     H5::DataSpace space(1, dims);
-    auto ds = impl_->file.createDataSet(dataset, H5::PredType::NATIVE_DOUBLE, space, Impl::untimed());
+    auto ds = impl_->file->createDataSet(dataset, H5::PredType::NATIVE_DOUBLE, space, Impl::untimed());
     if (!values.empty()) ds.write(values.data(), H5::PredType::NATIVE_DOUBLE);
 }
 
@@ -102,7 +103,7 @@ void H5Writer::write(const std::string& dataset, const Eigen::MatrixXd& values) 
     impl_->make_parents(dataset);
     hsize_t dims[2] = {static_cast<hsize_t>(values.rows()), static_cast<hsize_t>(values.cols())};
     H5::DataSpace space(2, dims);
-    auto ds = impl_->file.createDataSet(dataset, H5::PredType::NATIVE_DOUBLE, space, Impl::untimed());
+    auto ds = impl_->file->createDataSet(dataset, H5::PredType::NATIVE_DOUBLE, space, Impl::untimed());
     const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> row_major = values;
     if (values.size()) ds.write(row_major.data(), H5::PredType::NATIVE_DOUBLE);
 }
@@ -111,7 +112,7 @@ void H5Writer::write_ints(const std::string& dataset, const std::vector<long lon
     impl_->make_parents(dataset);
     hsize_t dims[1] = {values.size()};
     H5::DataSpace space(1, dims);
-    auto ds = impl_->file.createDataSet(dataset, H5::PredType::NATIVE_LLONG, space, Impl::untimed());
+    auto ds = impl_->file->createDataSet(dataset, H5::PredType::NATIVE_LLONG, space, Impl::untimed());
     if (!values.empty()) ds.write(values.data(), H5::PredType::NATIVE_LLONG);
 }
 
@@ -131,7 +132,7 @@ void H5Writer::attribute(const std::string& object, const std::string& name, dou
 }
 
 void H5Writer::commit() {
-    impl_->file.close();
+    impl_->file->close();
     std::filesystem::rename(impl_->partial, impl_->path);
     impl_->committed = true;
 }
@@ -178,7 +179,7 @@ H5Reader::H5Reader(std::filesystem::path path) : path_(std::move(path)), impl_(s
     if (!std::filesystem::exists(path_)) throw InputError("HDF5 file '" + path_.string() + "' does not exist");
     try {
         H5::Exception::dontPrint();
-        impl_->file = H5::H5File(path_.string(), H5F_ACC_RDONLY);
+        impl_->file.openFile(path_.string(), H5F_ACC_RDONLY);
     } catch (const H5::Exception& e) {
         throw InputError("cannot open HDF5 file '" + path_.string() + "': " + e.getDetailMsg());
     }

@@ -29,6 +29,12 @@ std::array<std::pair<int, double>, 2> line_weights(int i, int n) {
     return {{{(i - 1) / 2, 0.5}, {(i + 1) / 2, 0.5}}};
 }
 
+}  // namespace
+
+// One level of the hierarchy. In a named namespace, not the file's anonymous one: GridMultigrid::Impl
+// (a class with external linkage) holds them, and GCC warns (-Wsubobject-linkage) when such a class has
+// a member of a file-local type that a unity build includes like a header.
+namespace detail {
 struct Level {
     int nx = 0, ny = 0;
     std::vector<int> dof_of_point;  // lattice point -> its node's first DOF (level 0: model numbering)
@@ -46,6 +52,11 @@ struct Level {
     RowMajor P, R;                  // to/from the next coarser level
     Eigen::VectorXd x, b, r;
 };
+}  // namespace detail
+
+namespace {
+
+using detail::Level;
 
 // Refills the level's matrix from its element matrices: element_matrix(e) = {scale, column-major data}.
 void fill(Level& L, const auto& element_matrix) {

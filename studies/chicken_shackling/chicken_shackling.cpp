@@ -1614,10 +1614,7 @@ int main(int argc, char** argv) {
                     throw InputError(fmt::format("--shackle takes at most five operands (case, end time, mass scaling step, "
                                                  "drive ramp, damping frame), got {}: '{}'", op.size(), op[5]));
                 const std::vector<std::string> cases = {"rotating", "inverting"}, frames = {"absolute", "drive"};
-                const std::string which = op.empty() ? "rotating" : op[0];
-                if (which != cases[0] && which != cases[1])
-                    input::fail({"command line", 0, "--shackle (case)"},
-                                fmt::format("must be {}, got '{}'{}", input::one_of(cases), which, input::did_you_mean(which, cases)));
+                const std::string which = input::check_choice(op.empty() ? "rotating" : op[0], {"command line", 0, "--shackle (case)"}, cases);
                 const bool rotating = which == "rotating";
                 const double end = op.size() > 1 ? input::parse_real(op[1], {"command line", 0, "--shackle (end time)"}, input::Range::positive())
                                                  : kShackleWindow;
@@ -1627,10 +1624,8 @@ int main(int argc, char** argv) {
                 const double ramp = op.size() > 3 ? input::parse_real(op[3], {"command line", 0, "--shackle (drive ramp)"},
                                                                       input::Range::non_negative())
                                                   : 0.0;
-                const std::string frame = op.size() > 4 ? op[4] : "absolute";
-                if (frame != frames[0] && frame != frames[1])
-                    input::fail({"command line", 0, "--shackle (damping frame)"},
-                                fmt::format("must be {}, got '{}'{}", input::one_of(frames), frame, input::did_you_mean(frame, frames)));
+                const std::string frame =
+                    input::check_choice(op.size() > 4 ? op[4] : "absolute", {"command line", 0, "--shackle (damping frame)"}, frames);
                 const std::string name = fmt::format("shackle-{}", rotating ? "rotating" : "inverting");
                 io::RunFolder out(check::side_run_folder("chicken_shackling", name, args), "chicken_shackling --shackle");
                 const chicken::Chicken bird = chicken::table_5_3_chicken();

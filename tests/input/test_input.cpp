@@ -73,6 +73,15 @@ TEST(Numbers, DidYouMean) {
     EXPECT_EQ(one_of(keys), "modes, shift_hz, mass or mesh");
 }
 
+TEST(Numbers, CheckChoiceNamesTheValueTheOptionsAndTheNearest) {
+    const std::vector<std::string> cases = {"rotating", "inverting"};
+    const Where at{"command line", 0, "--shackle (case)"};
+    EXPECT_EQ(check_choice("inverting", at, cases), "inverting");
+    EXPECT_ERROR(check_choice("rotatin", at, cases),
+                 "command line: --shackle (case): 'rotatin' is not rotating or inverting (did you mean 'rotating'?)");
+    EXPECT_ERROR(check_choice("", at, cases), "'' is not rotating or inverting");
+}
+
 const char* kCase = R"(title = "demo"
 modes = 4
 shift_hz = -1.5
