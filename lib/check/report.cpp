@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstring>
 #include <ctime>
 #include <fstream>
 #include <iomanip>
@@ -11,6 +12,7 @@
 #include <tuple>
 #include <sstream>
 
+#include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include "check/reference.hpp"
@@ -165,6 +167,126 @@ nlohmann::json read_json(const std::filesystem::path& path) {
     } catch (const nlohmann::json::parse_error& e) {
         throw InputError(path.string() + ": not valid JSON (" + e.what() + ")");
     }
+}
+
+// ---- A study's solver runs (runs.json) as the report's tables ---------------------------------------
+// An explicit run's summary has some forty values (ExplicitSolver's RunSummary::to_json); a table of all
+// of them was 38 columns of raw keys. The report shows what a reader of LS-DYNA's d3hsp looks for first:
+// size, time and step, what controls the step, added mass, energy balance, hourglass, health, and
+// where the wall time went. Every value stays in runs.json, which the section names.
+
+bool is_explicit_run(const nlohmann::json& run) {
+    const nlohmann::json& v = run["values"];
+    return v.is_object() && v.contains("steps") && v.contains("timing_s");
+}
+
+std::string compact(double v) { return fmt::format("{:.3g}", v); }
+
+// The value at `key` of an explicit summary as compact text, "" when the run does not have it.
+std::string compact_at(const nlohmann::json& values, const char* key, double scale = 1.0) {
+    return values.contains(key) && values[key].is_number() ? compact(scale * values[key].get<double>()) : "";
+}
+
+// "elements 84 %, update 15 %, contact 0.9 %" (no line break inside a share): the timing table's shares of its total, largest first
+// (contact = search + forces; the timers' own cost counts with "other").
+std::string time_split(const nlohmann::json& timing) {
+    std::map<std::string, double> share;
+    double total = 0;
+    for (const auto& [key, t] : timing.items()) {
+        if (!t.is_number()) continue;
+        const std::string group = key.starts_with("contact") ? "contact" : key == "timers_own_cost" ? "other" : key;
+        share[group] += t.get<double>();
+        total += t.get<double>();
+    }
+    if (total <= 0) return "";
+    std::vector<std::pair<double, std::string>> order;
+    for (const auto& [group, t] : share)
+        if (t >= 5e-4 * total) order.emplace_back(t, group);
+    std::ranges::sort(order, std::greater<>());
+    std::string out;
+    for (const auto& [t, group] : order) out += (out.empty() ? "" : ", ") + group + " " + fmt::format("{:.2g}\u00a0%", 100 * t / total);
+    return out;
+}
+
+std::vector<std::string> explicit_run_row(const nlohmann::json& run) {
+    const nlohmann::json& v = run["values"];
+    std::string name = run.value("name", "");
+    if (v.contains("restarted_from") && v["restarted_from"].contains("time"))
+        name += " (restarted at " + compact(v["restarted_from"]["time"].get<double>()) + " s)";
+    std::string step = compact_at(v, "min_dt_s", 1e6);
+    if (const std::string hi = compact_at(v, "max_dt_s", 1e6); !hi.empty() && hi != step) step += "-" + hi;
+    std::string health = "-";
+    if (run.contains("health")) {
+        const nlohmann::json& h = run["health"];
+        health = h.value("passed", false) ? "ok" : "failed";
+        if (!h.value("passed", false)) {
+            if (h.value("balance_error", 0.0) > h.value("balance_limit", 1.0))
+                health += ": balance " + compact(h["balance_error"].get<double>()) + " > " + compact(h["balance_limit"].get<double>());
+            if (h.value("hourglass_fraction", 0.0) > h.value("hourglass_limit", 1.0))
+                health += ": hourglass " + compact(h["hourglass_fraction"].get<double>()) + " > " + compact(h["hourglass_limit"].get<double>());
+        }
+    }
+    return {name,
+            v.contains("nodes") ? value_text(v["nodes"]) : "",
+            v.contains("elements") ? value_text(v["elements"]) : "",
+            compact_at(v, "end_time_s"),
+            v.contains("steps") ? value_text(v["steps"]) : "",
+            step,
+            v.value("controlling_element", ""),
+            compact_at(v, "added_mass_fraction", 100.0),
+            compact_at(v, "energy_balance_relative_error"),
+            compact_at(v, "hourglass_fraction_of_internal"),
+            health,
+            compact_at(v, "wall_s") + (v.contains("threads") ? " (" + value_text(v["threads"]) + ")" : ""),
+            compact_at(v, "element_cycles_per_s", 1e-6),
+            time_split(v["timing_s"])};
+}
+
+// A runs.json key as a column heading: "wall_s" -> "wall (s)", "final_compliance_J" -> "final compliance (J)".
+std::string key_heading(std::string key) {
+    std::string unit;
+    for (const char* u : {"_s", "_J", "_kg", "_m", "_Hz"})
+        if (key.size() > std::strlen(u) && key.ends_with(u)) {
+            unit = std::string(" (") + (u + 1) + ")";
+            key.resize(key.size() - std::strlen(u));
+            break;
+        }
+    std::ranges::replace(key, '_', ' ');
+    return key + unit;
+}
+
+// The solver runs of a study: the explicit runs in the table above, the other runs (modal, topology
+// optimization: a dozen values each) with all their values.
+std::vector<Block> solver_run_tables(const nlohmann::json& runs) {
+    std::vector<Block> out;
+    Block expl{Block::Table};
+    expl.header = {"run", "nodes", "elements", "end time (s)", "steps", "step (us)", "controlling element (at the end)", "added mass (%)",
+                   "energy balance error", "hourglass / internal", "health", "wall (s) (threads)", "M element-cycles/s",
+                   "where the wall time went"};
+    std::vector<std::string> keys;
+    std::vector<const nlohmann::json*> others;
+    for (const auto& run : runs) {
+        if (is_explicit_run(run)) {
+            expl.rows.push_back(explicit_run_row(run));
+            continue;
+        }
+        others.push_back(&run);
+        for (const auto& [k, x] : run["values"].items())
+            if (k != "name" && std::ranges::find(keys, k) == keys.end()) keys.push_back(k);
+    }
+    if (!expl.rows.empty()) out.push_back(std::move(expl));
+    if (!others.empty()) {
+        Block other{Block::Table};
+        other.header = {"run"};
+        for (const auto& k : keys) other.header.push_back(key_heading(k));
+        for (const nlohmann::json* run : others) {
+            std::vector<std::string> row = {run->value("name", "")};
+            for (const auto& k : keys) row.push_back((*run)["values"].contains(k) ? value_text((*run)["values"][k]) : "");
+            other.rows.push_back(std::move(row));
+        }
+        out.push_back(std::move(other));
+    }
+    return out;
 }
 
 // Thesis order of items: by chapter (the appendices, lettered, after the chapters), then tables,
@@ -537,19 +659,9 @@ int write_report(const ReportInputs& in) {
         }
         if (!s.runs.empty()) {
             heading(3, "Solver runs");
-            std::vector<std::string> keys;
-            for (const auto& run : s.runs)
-                for (const auto& [k, v] : run["values"].items())
-                    if (std::find(keys.begin(), keys.end(), k) == keys.end()) keys.push_back(k);
-            Block runs{Block::Table};
-            runs.header = {"run"};
-            runs.header.insert(runs.header.end(), keys.begin(), keys.end());
-            for (const auto& run : s.runs) {
-                std::vector<std::string> row = {run.value("name", "")};
-                for (const auto& k : keys) row.push_back(run["values"].contains(k) ? value_text(run["values"][k]) : "");
-                runs.rows.push_back(row);
-            }
-            doc.push_back(runs);
+            paragraph("Every value of every run (energies, step limits, per-part and per-contact-interface figures, the "
+                      "timing table in seconds): `build/results/" + s.name + "/runs.json`.");
+            for (Block& table : solver_run_tables(s.runs)) doc.push_back(std::move(table));
         }
     }
 

@@ -425,10 +425,15 @@ TEST(Report, ListsEveryStudyAndTheDiscrepancies) {
         run_demo_as_expected(study);
         study.record_run({"run 1",
                           {{"steps", 100},
+                           {"nodes", 8},
+                           {"min_dt_s", 1.25e-6},
+                           {"max_dt_s", 1.5e-6},
                            {"wall_s", 0.5},
-                           {"timing_s", {{"elements", 0.25}, {"update", 0.125}}},
+                           {"threads", 2},
+                           {"timing_s", {{"elements", 0.25}, {"update", 0.125}, {"contact_search", 0.0625}, {"contact_forces", 0.0625}}},
                            {"contact_interfaces", nlohmann::json::array({{{"name", "fingers on ball"}, {"forces_s", 0.0625}},
                                                                          {{"name", "ball on floor"}, {"forces_s", 0.5}}})}}});
+        study.record_run({"modes 1", {{"modes", 10}, {"solver", {{"name", "CHOLMOD"}, {"nonzeros", 100}}}, {"final_compliance_J", 2.5}}});
         EXPECT_EQ(study.finish(), 0);
     }
     // A second reference file without results: listed as not run.
@@ -449,10 +454,17 @@ TEST(Report, ListsEveryStudyAndTheDiscrepancies) {
     EXPECT_NE(md.find("| other |"), std::string::npos);
     EXPECT_NE(md.find("not run"), std::string::npos);
     EXPECT_NE(md.find("Solver runs"), std::string::npos);
-    // A run's objects read as words, not JSON: the timing table, the contact interfaces by name.
-    EXPECT_NE(md.find("| elements 0.25, update 0.125 |"), std::string::npos);
-    EXPECT_NE(md.find("| fingers on ball: forces_s 0.0625; ball on floor: forces_s 0.5 |"), std::string::npos);
-    EXPECT_EQ(md.find("{\"elements\""), std::string::npos);
+    // An explicit run (steps and a timing table) in the summary columns, where its wall time went as
+    // shares (contact = search + forces; ties by name), every value named in runs.json; not 38 raw keys.
+    EXPECT_NE(md.find("| run | nodes | elements | end time (s) | steps | step (us) |"), std::string::npos) << md;
+    EXPECT_NE(md.find("| run 1 | 8 |  |  | 100 | 1.25-1.5 |"), std::string::npos) << md;
+    EXPECT_NE(md.find("| 0.5 (2) |  | elements 50\u00a0%, update 25\u00a0%, contact 25\u00a0% |"), std::string::npos) << md;
+    EXPECT_NE(md.find("`build/results/demo/runs.json`"), std::string::npos);
+    EXPECT_EQ(md.find("contact_search"), std::string::npos);
+    // Any other run with all its values, keys as headings, objects read as words, not JSON.
+    EXPECT_NE(md.find("| run | final compliance (J) | modes | solver |"), std::string::npos) << md;
+    EXPECT_NE(md.find("| modes 1 | 2.5 | 10 | CHOLMOD: nonzeros 100 |"), std::string::npos) << md;
+    EXPECT_EQ(md.find("{\"name\""), std::string::npos);
     // Headline by kind, reproduction first: series 3 + miss + 3 modes = 7 reproduction records, 5 pass.
     EXPECT_NE(md.find("Reproduction: 5 of 7 thesis results reproduced by our models, 2 not reproduced (known misses), 0 failed"),
               std::string::npos) << md.substr(0, 2000);
