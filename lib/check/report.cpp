@@ -180,7 +180,15 @@ bool is_explicit_run(const nlohmann::json& run) {
     return v.is_object() && v.contains("steps") && v.contains("timing_s");
 }
 
-std::string compact(double v) { return fmt::format("{:.3g}", v); }
+// Three significant digits, without an exponent from 1,000 to 1e9 (a wall time of 2170 s, not 2.17e+03).
+std::string compact(double v) {
+    return std::abs(v) >= 1e3 && std::abs(v) < 1e9 ? fmt::format("{:.0f}", v) : fmt::format("{:.3g}", v);
+}
+
+// A count of an explicit summary (nodes, steps) in full: 1234567, not 1.23457e+06.
+std::string count_at(const nlohmann::json& values, const char* key) {
+    return values.contains(key) && values[key].is_number() ? fmt::format("{}", values[key].get<long long>()) : "";
+}
 
 // The value at `key` of an explicit summary as compact text, "" when the run does not have it.
 std::string compact_at(const nlohmann::json& values, const char* key, double scale = 1.0) {
@@ -227,17 +235,17 @@ std::vector<std::string> explicit_run_row(const nlohmann::json& run) {
         }
     }
     return {name,
-            v.contains("nodes") ? value_text(v["nodes"]) : "",
-            v.contains("elements") ? value_text(v["elements"]) : "",
+            count_at(v, "nodes"),
+            count_at(v, "elements"),
             compact_at(v, "end_time_s"),
-            v.contains("steps") ? value_text(v["steps"]) : "",
+            count_at(v, "steps"),
             step,
             v.value("controlling_element", ""),
             compact_at(v, "added_mass_fraction", 100.0),
             compact_at(v, "energy_balance_relative_error"),
             compact_at(v, "hourglass_fraction_of_internal"),
             health,
-            compact_at(v, "wall_s") + (v.contains("threads") ? " (" + value_text(v["threads"]) + ")" : ""),
+            compact_at(v, "wall_s") + (v.contains("threads") ? " (" + count_at(v, "threads") + ")" : ""),
             compact_at(v, "element_cycles_per_s", 1e-6),
             time_split(v["timing_s"])};
 }

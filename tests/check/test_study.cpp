@@ -424,11 +424,11 @@ TEST(Report, ListsEveryStudyAndTheDiscrepancies) {
         Study study("demo", argv.argc(), argv.data());
         run_demo_as_expected(study);
         study.record_run({"run 1",
-                          {{"steps", 100},
+                          {{"steps", 1234567},
                            {"nodes", 8},
                            {"min_dt_s", 1.25e-6},
                            {"max_dt_s", 1.5e-6},
-                           {"wall_s", 0.5},
+                           {"wall_s", 2170.4},
                            {"threads", 2},
                            {"timing_s", {{"elements", 0.25}, {"update", 0.125}, {"contact_search", 0.0625}, {"contact_forces", 0.0625}}},
                            {"contact_interfaces", nlohmann::json::array({{{"name", "fingers on ball"}, {"forces_s", 0.0625}},
@@ -457,8 +457,8 @@ TEST(Report, ListsEveryStudyAndTheDiscrepancies) {
     // An explicit run (steps and a timing table) in the summary columns, where its wall time went as
     // shares (contact = search + forces; ties by name), every value named in runs.json; not 38 raw keys.
     EXPECT_NE(md.find("| run | nodes | elements | end time (s) | steps | step (us) |"), std::string::npos) << md;
-    EXPECT_NE(md.find("| run 1 | 8 |  |  | 100 | 1.25-1.5 |"), std::string::npos) << md;
-    EXPECT_NE(md.find("| 0.5 (2) |  | elements 50\u00a0%, update 25\u00a0%, contact 25\u00a0% |"), std::string::npos) << md;
+    EXPECT_NE(md.find("| run 1 | 8 |  |  | 1234567 | 1.25-1.5 |"), std::string::npos) << md;
+    EXPECT_NE(md.find("| 2170 (2) |  | elements 50\u00a0%, update 25\u00a0%, contact 25\u00a0% |"), std::string::npos) << md;
     EXPECT_NE(md.find("`build/results/demo/runs.json`"), std::string::npos);
     EXPECT_EQ(md.find("contact_search"), std::string::npos);
     // Any other run with all its values, keys as headings, objects read as words, not JSON.
