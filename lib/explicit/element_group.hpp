@@ -10,6 +10,7 @@
 // (beams; later shells) also get rotational DOFs: NodalState::rot_index[node] >= 0 then indexes
 // the arrays of angular velocity, moment, rotational inertia and the nodal rotation matrix. Solid-
 // only models carry no rotational storage.
+#include <cmath>
 #include <limits>
 #include <memory>
 #include <span>
@@ -64,7 +65,23 @@ struct GroupForceResult {
 struct ChunkSums {
     double ie = 0, hg = 0, visc = 0, vm_sq = 0, dt = 0;  // energies, viscous power, max squared von Mises, min step
     int dt_k = -1, bad_k = -1;                           // kernel index of the step's element, first bad element
+
+    /// Keeps element k's critical step when it is the smallest of the chunk so far.
+    void take_step(double step, int k) {
+        if (step < dt) {
+            dt = step;
+            dt_k = k;
+        }
+    }
 };
+
+/// An element's critical step 2/omega lowered by stiffness damping beta [s]:
+/// dt (sqrt(1 + xi^2) - xi) with xi = beta omega / 2 = beta / dt (the damped central difference's bound).
+inline double stiffness_damped_step(double dt, double beta) {
+    if (beta <= 0.0) return dt;
+    const double xi = beta / dt;
+    return dt * (std::sqrt(1.0 + xi * xi) - xi);
+}
 
 /// The group's result from its chunks' sums, combined in the fixed chunk order (the same bits on
 /// any number of threads); order maps kernel index -> element index within the block. Without

@@ -185,18 +185,8 @@ GroupForceResult Hex8Group::internal_forces(NodalState& s, bool compute_dt) {
                 p.visc += r.viscous_power[l];
                 von_mises_sq_[k] = r.von_mises_sq[l];
                 p.vm_sq = std::max(p.vm_sq, r.von_mises_sq[l]);
-                if (compute_dt) {
-                    double dt = dt_block[l] * sqrt_mass_scale_[k];  // dt ~ sqrt(rho)
-                    if (beta > 0.0) {
-                        // Stiffness damping lowers the limit: dt <= (2/omega)(sqrt(1 + xi^2) - xi), xi = beta omega/2.
-                        const double xi = beta / dt;
-                        dt *= std::sqrt(1.0 + xi * xi) - xi;
-                    }
-                    if (dt < p.dt) {
-                        p.dt = dt;
-                        p.dt_k = k;
-                    }
-                }
+                if (compute_dt)  // dt ~ sqrt(rho) under mass scaling; stiffness damping lowers it
+                    p.take_step(stiffness_damped_step(dt_block[l] * sqrt_mass_scale_[k], beta), k);
             }
         }
         partial_[c] = p;

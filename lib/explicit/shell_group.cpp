@@ -305,15 +305,8 @@ GroupForceResult ShellGroup::internal_forces(NodalState& s, bool compute_dt) {
             p.hg += r.hourglass_energy;
             vm_sq_[k] = r.von_mises_sq;
             p.vm_sq = std::max({p.vm_sq, r.von_mises_sq[0], r.von_mises_sq[1], r.von_mises_sq[2]});
-            if (compute_dt) {
-                // Table 2-1 shell row on the current nodes; dt ~ sqrt(rho) under mass scaling.
-                const double dt =
-                    factor_ * shellbt::critical_time_step(material_, xe, triangles_) * sqrt_mass_scale_[k];
-                if (dt < p.dt) {
-                    p.dt = dt;
-                    p.dt_k = k;
-                }
-            }
+            if (compute_dt)  // Table 2-1 shell row on the current nodes; dt ~ sqrt(rho) under mass scaling.
+                p.take_step(factor_ * shellbt::critical_time_step(material_, xe, triangles_) * sqrt_mass_scale_[k], k);
         }
         partial_[chunk] = p;
     };

@@ -260,20 +260,9 @@ GroupForceResult TetGroup<N, Q>::internal_forces(NodalState& s, bool compute_dt)
                 p.visc += r.viscous_power[l];
                 von_mises_sq_[k] = r.von_mises_sq[l];
                 p.vm_sq = std::max(p.vm_sq, r.von_mises_sq[l]);
-                if (compute_dt) {
-                    // The element's own limit carried by its Table 2-1 step, mass scaling, the
-                    // measured factor (tet_groups.hpp), then the stiffness-damping reduction
-                    // dt <= (2/omega)(sqrt(1 + xi^2) - xi), xi = beta omega/2.
-                    double dt = factor_ * dt_block[l] * step_scale_[k];
-                    if (beta_ > 0.0) {
-                        const double xi = beta_ / dt;
-                        dt *= std::sqrt(1.0 + xi * xi) - xi;
-                    }
-                    if (dt < p.dt) {
-                        p.dt = dt;
-                        p.dt_k = k;
-                    }
-                }
+                // The element's own limit carried by its Table 2-1 step, mass scaling, the measured
+                // factor (tet_groups.hpp), then the stiffness-damping reduction.
+                if (compute_dt) p.take_step(stiffness_damped_step(factor_ * dt_block[l] * step_scale_[k], beta_), k);
             }
         }
         partial_[c] = p;
