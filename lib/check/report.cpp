@@ -8,6 +8,7 @@
 #include <fstream>
 #include <iomanip>
 #include <map>
+#include <optional>
 #include <set>
 #include <tuple>
 #include <sstream>
@@ -175,9 +176,28 @@ nlohmann::json read_json(const std::filesystem::path& path) {
 // size, time and step, what controls the step, added mass, energy balance, hourglass, health, and
 // where the wall time went. Every value stays in runs.json, which the section names.
 
+// A run's values ({} when runs.json has none: a hand-edited or truncated file is shown, not fatal).
+const nlohmann::json& values_of(const nlohmann::json& run) {
+    static const nlohmann::json none = nlohmann::json::object();
+    if (!run.is_object()) return none;
+    const auto it = run.find("values");
+    return it != run.end() && it->is_object() ? *it : none;
+}
+
+std::string name_of(const nlohmann::json& run) {
+    const auto it = run.is_object() ? run.find("name") : run.end();
+    return it != run.end() && it->is_string() ? it->get<std::string>() : "";
+}
+
 bool is_explicit_run(const nlohmann::json& run) {
-    const nlohmann::json& v = run["values"];
-    return v.is_object() && v.contains("steps") && v.contains("timing_s");
+    const nlohmann::json& v = values_of(run);
+    return v.contains("steps") && v.contains("timing_s") && v["timing_s"].is_object();
+}
+
+std::optional<double> number_at(const nlohmann::json& object, const char* key) {
+    const auto it = object.find(key);
+    if (it == object.end() || !it->is_number()) return std::nullopt;
+    return it->get<double>();
 }
 
 // Three significant digits, without an exponent from 1,000 to 1e9 (a wall time of 2170 s, not 2.17e+03).
@@ -185,18 +205,21 @@ std::string compact(double v) {
     return std::abs(v) >= 1e3 && std::abs(v) < 1e9 ? fmt::format("{:.0f}", v) : fmt::format("{:.3g}", v);
 }
 
-// A count of an explicit summary (nodes, steps) in full: 1234567, not 1.23457e+06.
-std::string count_at(const nlohmann::json& values, const char* key) {
-    return values.contains(key) && values[key].is_number() ? fmt::format("{}", values[key].get<long long>()) : "";
-}
-
-// The value at `key` of an explicit summary as compact text, "" when the run does not have it.
+// The value at `key` as compact text, "" when the run does not have it.
 std::string compact_at(const nlohmann::json& values, const char* key, double scale = 1.0) {
-    return values.contains(key) && values[key].is_number() ? compact(scale * values[key].get<double>()) : "";
+    const auto x = number_at(values, key);
+    return x ? compact(scale * *x) : "";
 }
 
-// "elements 84 %, update 15 %, contact 0.9 %" (no line break inside a share): the timing table's shares of its total, largest first
-// (contact = search + forces; the timers' own cost counts with "other").
+// A count (nodes, steps) in full: 1234567, not 1.23457e+06.
+std::string count_at(const nlohmann::json& values, const char* key) {
+    const auto x = number_at(values, key);
+    return x ? fmt::format("{:.0f}", *x) : "";
+}
+
+// "elements 84 %, update 15 %, contact 0.9 %": the timing table's shares of its total, largest first
+// (contact = search + forces; the timers' own cost counts with "other"); a no-break space before each
+// "%" keeps a share on one line of the table.
 std::string time_split(const nlohmann::json& timing) {
     std::map<std::string, double> share;
     double total = 0;
@@ -206,7 +229,7 @@ std::string time_split(const nlohmann::json& timing) {
         share[group] += t.get<double>();
         total += t.get<double>();
     }
-    if (total <= 0) return "";
+    if (!(total > 0)) return "";
     std::vector<std::pair<double, std::string>> order;
     for (const auto& [group, t] : share)
         if (t >= 5e-4 * total) order.emplace_back(t, group);
@@ -216,36 +239,43 @@ std::string time_split(const nlohmann::json& timing) {
     return out;
 }
 
+// "ok", or "failed" with the limit the run broke (run health: check/run_health.hpp).
+std::string health_text(const nlohmann::json& run) {
+    const auto it = run.is_object() ? run.find("health") : run.end();
+    if (it == run.end() || !it->is_object()) return "-";
+    const nlohmann::json& h = *it;
+    const auto passed = h.find("passed");
+    if (passed != h.end() && passed->is_boolean() && passed->get<bool>()) return "ok";
+    std::string out = "failed";
+    for (const auto& [what, value, limit] : {std::tuple{"balance", "balance_error", "balance_limit"},
+                                             std::tuple{"hourglass", "hourglass_fraction", "hourglass_limit"}}) {
+        const auto x = number_at(h, value), lim = number_at(h, limit);
+        if (x && lim && *x > *lim) out += std::string(": ") + what + " " + compact(*x) + " > " + compact(*lim);
+    }
+    return out;
+}
+
 std::vector<std::string> explicit_run_row(const nlohmann::json& run) {
-    const nlohmann::json& v = run["values"];
-    std::string name = run.value("name", "");
-    if (v.contains("restarted_from") && v["restarted_from"].contains("time"))
-        name += " (restarted at " + compact(v["restarted_from"]["time"].get<double>()) + " s)";
+    const nlohmann::json& v = values_of(run);
+    std::string name = name_of(run);
+    if (const auto from = v.find("restarted_from"); from != v.end() && from->is_object())
+        if (const auto t = number_at(*from, "time")) name += " (restarted at " + compact(*t) + " s)";
     std::string step = compact_at(v, "min_dt_s", 1e6);
     if (const std::string hi = compact_at(v, "max_dt_s", 1e6); !hi.empty() && hi != step) step += "-" + hi;
-    std::string health = "-";
-    if (run.contains("health")) {
-        const nlohmann::json& h = run["health"];
-        health = h.value("passed", false) ? "ok" : "failed";
-        if (!h.value("passed", false)) {
-            if (h.value("balance_error", 0.0) > h.value("balance_limit", 1.0))
-                health += ": balance " + compact(h["balance_error"].get<double>()) + " > " + compact(h["balance_limit"].get<double>());
-            if (h.value("hourglass_fraction", 0.0) > h.value("hourglass_limit", 1.0))
-                health += ": hourglass " + compact(h["hourglass_fraction"].get<double>()) + " > " + compact(h["hourglass_limit"].get<double>());
-        }
-    }
+    const auto controlling = v.find("controlling_element");
+    const std::string threads = count_at(v, "threads");
     return {name,
             count_at(v, "nodes"),
             count_at(v, "elements"),
             compact_at(v, "end_time_s"),
             count_at(v, "steps"),
             step,
-            v.value("controlling_element", ""),
+            controlling != v.end() && controlling->is_string() ? controlling->get<std::string>() : "",
             compact_at(v, "added_mass_fraction", 100.0),
             compact_at(v, "energy_balance_relative_error"),
             compact_at(v, "hourglass_fraction_of_internal"),
-            health,
-            compact_at(v, "wall_s") + (v.contains("threads") ? " (" + count_at(v, "threads") + ")" : ""),
+            health_text(run),
+            compact_at(v, "wall_s") + (threads.empty() ? "" : " (" + threads + ")"),
             compact_at(v, "element_cycles_per_s", 1e-6),
             time_split(v["timing_s"])};
 }
@@ -279,7 +309,7 @@ std::vector<Block> solver_run_tables(const nlohmann::json& runs) {
             continue;
         }
         others.push_back(&run);
-        for (const auto& [k, x] : run["values"].items())
+        for (const auto& [k, x] : values_of(run).items())
             if (k != "name" && std::ranges::find(keys, k) == keys.end()) keys.push_back(k);
     }
     if (!expl.rows.empty()) out.push_back(std::move(expl));
@@ -288,8 +318,9 @@ std::vector<Block> solver_run_tables(const nlohmann::json& runs) {
         other.header = {"run"};
         for (const auto& k : keys) other.header.push_back(key_heading(k));
         for (const nlohmann::json* run : others) {
-            std::vector<std::string> row = {run->value("name", "")};
-            for (const auto& k : keys) row.push_back((*run)["values"].contains(k) ? value_text((*run)["values"][k]) : "");
+            std::vector<std::string> row = {name_of(*run)};
+            const nlohmann::json& v = values_of(*run);
+            for (const auto& k : keys) row.push_back(v.contains(k) ? value_text(v[k]) : "");
             other.rows.push_back(std::move(row));
         }
         out.push_back(std::move(other));

@@ -496,6 +496,32 @@ TEST(Report, ListsEveryStudyAndTheDiscrepancies) {
     }
 }
 
+TEST(Report, SolverRunsNameAFailedHealthAndSurviveAMalformedRunsFile) {
+    TempDir dir;
+    fs::create_directories(dir.path / "reference");
+    write(dir.path / "reference" / "demo.toml", kReference);
+    DemoArgs argv(dir.path / "reference" / "demo.toml", dir.path / "results" / "demo");
+    {
+        Study study("demo", argv.argc(), argv.data());
+        run_demo_as_expected(study);
+        EXPECT_EQ(study.finish(), 0);
+    }
+    // A run that failed its health, one without values, one with values of the wrong types, a number.
+    write(dir.path / "results" / "demo" / "runs.json", R"([
+        {"name": "drop", "values": {"steps": 10, "timing_s": {"elements": 3.0, "update": 1.0}},
+         "health": {"passed": false, "balance_error": 0.02, "balance_limit": 0.01, "hourglass_fraction": 0.05, "hourglass_limit": 0.1}},
+        {"name": "bare"},
+        {"name": "odd", "values": {"steps": "many", "timing_s": {"elements": "x"}, "restarted_from": 3}, "health": []},
+        7])");
+    EXPECT_EQ(write_report({dir.path / "reference", dir.path / "results", dir.path / "figures"}), 0);
+    std::ifstream md_in(dir.path / "figures" / "REPORT.md");
+    const std::string md((std::istreambuf_iterator<char>(md_in)), {});
+    EXPECT_NE(md.find("| drop |  |  |  | 10 |"), std::string::npos) << md;
+    EXPECT_NE(md.find("| failed: balance 0.02 > 0.01 |  |  | elements 75\u00a0%, update 25\u00a0% |"), std::string::npos) << md;
+    EXPECT_NE(md.find("| odd |  |  |  |  |"), std::string::npos) << md;  // "many" steps: not a count
+    EXPECT_NE(md.find("| bare |"), std::string::npos) << md;
+}
+
 TEST(Report, DrawsThesisCurveValuesOnOurCurve) {
     TempDir dir;
     fs::create_directories(dir.path / "reference");
