@@ -5,6 +5,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <map>
 
 #include <nlohmann/json.hpp>
@@ -144,6 +145,18 @@ struct DemoArgs {
     int argc() const { return static_cast<int>(argv.size()); }
     char** data() { return argv.data(); }
 };
+
+// The demo study run as expected for the report tests: dir/reference/demo.toml and its results in
+// dir/results/demo/; `more` (e.g. runs to record) is done before finish().
+void run_demo_study(const fs::path& dir, const std::function<void(Study&)>& more = {}) {
+    fs::create_directories(dir / "reference");
+    write(dir / "reference" / "demo.toml", kReference);
+    DemoArgs argv(dir / "reference" / "demo.toml", dir / "results" / "demo");
+    Study study("demo", argv.argc(), argv.data());
+    run_demo_as_expected(study);
+    if (more) more(study);
+    EXPECT_EQ(study.finish(), 0);
+}
 
 
 }  // namespace
@@ -417,12 +430,7 @@ TEST(Report, ItemsInThesisOrderAndFiguresByWholeNumber) {
 
 TEST(Report, ListsEveryStudyAndTheDiscrepancies) {
     TempDir dir;
-    fs::create_directories(dir.path / "reference");
-    write(dir.path / "reference" / "demo.toml", kReference);
-    DemoArgs argv(dir.path / "reference" / "demo.toml", dir.path / "results" / "demo");
-    {
-        Study study("demo", argv.argc(), argv.data());
-        run_demo_as_expected(study);
+    run_demo_study(dir.path, [](Study& study) {
         study.record_run({"run 1",
                           {{"steps", 1234567},
                            {"nodes", 8},
@@ -434,8 +442,7 @@ TEST(Report, ListsEveryStudyAndTheDiscrepancies) {
                            {"contact_interfaces", nlohmann::json::array({{{"name", "fingers on ball"}, {"forces_s", 0.0625}},
                                                                          {{"name", "ball on floor"}, {"forces_s", 0.5}}})}}});
         study.record_run({"modes 1", {{"modes", 10}, {"solver", {{"name", "CHOLMOD"}, {"nonzeros", 100}}}, {"final_compliance_J", 2.5}}});
-        EXPECT_EQ(study.finish(), 0);
-    }
+    });
     // A second reference file without results: listed as not run.
     auto other = std::string(kReference);
     other.replace(other.find("\"demo\""), 6, "\"other\"");
@@ -498,14 +505,7 @@ TEST(Report, ListsEveryStudyAndTheDiscrepancies) {
 
 TEST(Report, SolverRunsNameAFailedHealthAndSurviveAMalformedRunsFile) {
     TempDir dir;
-    fs::create_directories(dir.path / "reference");
-    write(dir.path / "reference" / "demo.toml", kReference);
-    DemoArgs argv(dir.path / "reference" / "demo.toml", dir.path / "results" / "demo");
-    {
-        Study study("demo", argv.argc(), argv.data());
-        run_demo_as_expected(study);
-        EXPECT_EQ(study.finish(), 0);
-    }
+    run_demo_study(dir.path);
     // A run that failed its health, one without values, one with values of the wrong types, a number.
     write(dir.path / "results" / "demo" / "runs.json", R"([
         {"name": "drop", "values": {"steps": 10, "timing_s": {"elements": 3.0, "update": 1.0}},
