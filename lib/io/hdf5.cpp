@@ -22,7 +22,7 @@ std::recursive_mutex& hdf5_mutex() {
 struct H5Writer::Impl {
     std::unique_lock<std::recursive_mutex> lock{hdf5_mutex()};  // first: released after the file closes
     std::filesystem::path path, partial;
-    std::optional<H5::H5File> file;  // emplaced by the constructor (H5File has no move assignment)
+    std::optional<H5::H5File> file;  // emplaced by the constructor (H5File assigns only by a deprecated implicit copy)
     bool committed = false;
 
     // Dataset creation without modification times (see the constructor).
