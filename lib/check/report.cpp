@@ -328,6 +328,42 @@ std::vector<Block> solver_run_tables(const nlohmann::json& runs) {
     return out;
 }
 
+// The cost of every study's recorded solver runs, one row a study: where the project's CPU goes
+// (explicit runs: steps and element-cycles, the solver's own measure; other runs: their wall time).
+// Runs of a study may have run at once on several cores, so the summed wall time is work, not the
+// study's elapsed time.
+Block solver_cost_table(const std::vector<StudyResults>& studies) {
+    Block t{Block::Table};
+    t.header = {"study", "explicit runs", "steps", "element-cycles (G)", "explicit wall time, summed (s)",
+                "M element-cycles/s (overall)", "longest explicit run", "other runs", "their wall time, summed (s)"};
+    for (const auto& s : studies) {
+        int n_explicit = 0, n_other = 0;
+        double steps = 0, cycles = 0, wall = 0, other_wall = 0, longest = -1;
+        std::string longest_name;
+        for (const auto& run : s.runs) {
+            const nlohmann::json& v = values_of(run);
+            const double w = number_at(v, "wall_s").value_or(0.0);
+            if (!is_explicit_run(run)) {
+                ++n_other;
+                other_wall += w;
+                continue;
+            }
+            ++n_explicit;
+            steps += number_at(v, "steps").value_or(0.0);
+            cycles += number_at(v, "element_cycles_per_s").value_or(0.0) * w;
+            wall += w;
+            if (w > longest) longest = w, longest_name = name_of(run);
+        }
+        if (n_explicit + n_other == 0) continue;
+        t.rows.push_back({s.name, std::to_string(n_explicit), n_explicit ? fmt::format("{:.0f}", steps) : "",
+                          n_explicit ? compact(cycles * 1e-9) : "", n_explicit ? compact(wall) : "",
+                          wall > 0 ? compact(cycles / wall * 1e-6) : "",
+                          n_explicit ? longest_name + " (" + compact(longest) + " s)" : "", std::to_string(n_other),
+                          n_other ? compact(other_wall) : ""});
+    }
+    return t;
+}
+
 // Thesis order of items: by chapter (the appendices, lettered, after the chapters), then tables,
 // figures, equations, sections, appendices, then number: "Table 5-4" before "Fig 5-10" before
 // "Sec 5.4.2, Figs 5-20, 5-24"; "Fig D-2" and "App E" after every chapter.
@@ -508,6 +544,13 @@ int write_report(const ReportInputs& in) {
     paragraph("Status: \"reproduced\" when every reproduction check of the study passes, \"partly reproduced (k of n)\" "
               "otherwise; \"FAILING\" when a check fails unexpectedly (a miss that is not a known miss, or a known "
               "miss that now passes).");
+    if (const Block cost = solver_cost_table(studies); !cost.rows.empty()) {
+        heading(2, "Solver cost");
+        paragraph("What the studies' recorded solver runs cost in this run of them (each study's \"Solver runs\" table "
+                  "has the runs; runs.json every value): explicit runs in steps and element-cycles, the solver's measure "
+                  "of work, and wall time summed over the runs, which may have run at once on several cores.");
+        doc.push_back(cost);
+    }
 
     // Failures first when there are any: they make the studies exit non-zero.
     if (all.failed() > 0) {

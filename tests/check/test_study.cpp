@@ -437,6 +437,7 @@ TEST(Report, ListsEveryStudyAndTheDiscrepancies) {
                            {"min_dt_s", 1.25e-6},
                            {"max_dt_s", 1.5e-6},
                            {"wall_s", 2170.4},
+                           {"element_cycles_per_s", 1e6},
                            {"threads", 2},
                            {"timing_s", {{"elements", 0.25}, {"update", 0.125}, {"contact_search", 0.0625}, {"contact_forces", 0.0625}}},
                            {"contact_interfaces", nlohmann::json::array({{{"name", "fingers on ball"}, {"forces_s", 0.0625}},
@@ -465,13 +466,16 @@ TEST(Report, ListsEveryStudyAndTheDiscrepancies) {
     // shares (contact = search + forces; ties by name), every value named in runs.json; not 38 raw keys.
     EXPECT_NE(md.find("| run | nodes | elements | end time (s) | steps | step (us) |"), std::string::npos) << md;
     EXPECT_NE(md.find("| run 1 | 8 |  |  | 1234567 | 1.25-1.5 |"), std::string::npos) << md;
-    EXPECT_NE(md.find("| 2170 (2) |  | elements 50\u00a0%, update 25\u00a0%, contact 25\u00a0% |"), std::string::npos) << md;
+    EXPECT_NE(md.find("| 2170 (2) | 1 | elements 50\u00a0%, update 25\u00a0%, contact 25\u00a0% |"), std::string::npos) << md;
     EXPECT_NE(md.find("`build/results/demo/runs.json`"), std::string::npos);
     EXPECT_EQ(md.find("contact_search"), std::string::npos);
     // Any other run with all its values, keys as headings, objects read as words, not JSON.
     EXPECT_NE(md.find("| run | final compliance (J) | modes | solver |"), std::string::npos) << md;
     EXPECT_NE(md.find("| modes 1 | 2.5 | 10 | CHOLMOD: nonzeros 100 |"), std::string::npos) << md;
     EXPECT_EQ(md.find("{\"name\""), std::string::npos);
+    // The cost of each study's runs, after the scorecard: element-cycles = rate x wall time.
+    EXPECT_NE(md.find("## Solver cost"), std::string::npos);
+    EXPECT_NE(md.find("| demo | 1 | 1234567 | 2.17 | 2170 | 1 | run 1 (2170 s) | 1 | 0 |"), std::string::npos) << md;
     // Headline by kind, reproduction first: series 3 + miss + 3 modes = 7 reproduction records, 5 pass.
     EXPECT_NE(md.find("Reproduction: 5 of 7 thesis results reproduced by our models, 2 not reproduced (known misses), 0 failed"),
               std::string::npos) << md.substr(0, 2000);
