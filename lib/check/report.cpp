@@ -704,7 +704,8 @@ int write_report(const ReportInputs& in) {
         for (const auto& r : s.records) items[item_sort_key(r.source) + "\x01" + r.source].push_back(&r);
         const auto item_of = [](const std::string& key) { return key.substr(key.rfind('\x01') + 1); };
         if (s.reference)
-            for (const auto& [fig_item, files] : s.reference->figures) {
+            for (const auto& figure : s.reference->figures) {
+                const std::string& fig_item = figure.first;
                 const bool named = std::ranges::any_of(items, [&](const auto& i) { return names_item(item_of(i.first), fig_item); });
                 if (!named) items.try_emplace(item_sort_key(fig_item) + "\x01" + fig_item);
             }

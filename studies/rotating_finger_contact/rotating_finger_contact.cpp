@@ -203,7 +203,9 @@ void finger_root_convergence(const std::filesystem::path& out) {
     std::vector<double> elements, peak, peak_ratio, mid_ratio, z_peak, y_peak;
     fmt::print("finger stub {:.1f} mm, tip couple about the major axis: beam theory M b / I = {:.4g} Pa per N m\n",
                1e3 * length, beam_surface / M);
-    for (auto& [name, mesh] : levels) {
+    for (auto& level : levels) {
+        const std::string& name = level.name;
+        const Mesh& mesh = level.mesh;  // (a named reference, not a structured binding: lambdas below capture it)
         // The couple as the consistent nodal forces of the linear traction sigma_zz = M y / I_h on the
         // tip faces (2 x 2 Gauss on each face; I_h is the meshed polygon's, so that the couple is M).
         // The tip face of a hexahedron of the last layer is nodes 4..7 (lib/mesh/finger.cpp).
