@@ -3,15 +3,19 @@
 #include <fnmatch.h>
 
 #include <fmt/format.h>
+#include <nlohmann/json.hpp>
 
 #include "input/toml_input.hpp"
 
 namespace fem::check {
 
 std::vector<HealthExemption> load_health_exemptions(const std::filesystem::path& reference_file) {
-    const input::TomlDocument doc = input::TomlDocument::read(reference_file);
+    return read_health_exemptions(input::TomlDocument::read(reference_file).root());
+}
+
+std::vector<HealthExemption> read_health_exemptions(const input::TomlTable& root) {
     std::vector<HealthExemption> out;
-    for (const input::TomlTable& t : doc.root().tables("health_exemption")) {
+    for (const input::TomlTable& t : root.tables("health_exemption")) {
         t.allow({"run", "balance", "hourglass"});
         HealthExemption e;
         e.run = t.string("run");
@@ -45,52 +49,61 @@ std::string RunHealth::text() const {
                        100 * kMaxHourglassFraction);
 }
 
+std::optional<RunHealth> judge_run(const std::string& name, const nlohmann::json& values,
+                                   const std::vector<HealthExemption>& exemptions) {
+    if (!values.is_object() || !values.contains("energy_balance_relative_error") ||
+        !values.contains("hourglass_fraction_of_internal"))
+        return std::nullopt;
+    RunHealth h;
+    h.run = name;
+    h.balance_error = values["energy_balance_relative_error"].get<double>();
+    h.hourglass_fraction = values["hourglass_fraction_of_internal"].get<double>();
+    h.balance_ok = h.balance_error <= kMaxBalanceError;  // nan fails
+    h.hourglass_ok = h.hourglass_fraction <= kMaxHourglassFraction;
+    for (const HealthExemption& e : exemptions) {
+        if (!e.matches(name)) continue;
+        if (!e.balance.empty()) h.balance_exemption = e.balance;
+        if (!e.hourglass.empty()) h.hourglass_exemption = e.hourglass;
+    }
+    return h;
+}
+
+std::vector<std::string> stale_exemptions(const std::vector<RunHealth>& judged, const std::vector<HealthExemption>& exemptions,
+                                          const std::string& file) {
+    std::vector<std::string> problems;
+    for (const HealthExemption& e : exemptions) {
+        // Did it match a run, and did a matched run need it (exceed that limit)?
+        bool matched = false, balance_needed = false, hourglass_needed = false;
+        for (const RunHealth& h : judged) {
+            if (!e.matches(h.run)) continue;
+            matched = true;
+            balance_needed = balance_needed || !h.balance_ok;
+            hourglass_needed = hourglass_needed || !h.hourglass_ok;
+        }
+        const std::string at = fmt::format("{}:{}", file, e.line);
+        if (!matched)
+            problems.push_back(fmt::format("{}: the health exemption names run '{}', which is not among the runs judged "
+                                           "(runs are named as in runs.json or run.json)", at, e.run));
+        else if (!e.balance.empty() && !balance_needed)
+            problems.push_back(fmt::format("{}: run '{}' is exempt from the balance limit but meets it (<= {:g} %): remove "
+                                           "the exemption", at, e.run, 100 * kMaxBalanceError));
+        else if (!e.hourglass.empty() && !hourglass_needed)
+            problems.push_back(fmt::format("{}: run '{}' is exempt from the hourglass limit but meets it (<= {:g} % of "
+                                           "internal): remove the exemption", at, e.run, 100 * kMaxHourglassFraction));
+    }
+    return problems;
+}
+
 std::vector<RunHealth> judge_run_health(const std::vector<std::pair<std::string, nlohmann::json>>& runs,
                                         const std::vector<HealthExemption>& exemptions, const std::string& reference_file,
                                         std::vector<std::string>& problems) {
     std::vector<RunHealth> out;
-    // Per exemption: did it match a run, and did a matched run need it (exceed that limit)?
-    std::vector<bool> matched(exemptions.size(), false), balance_needed(exemptions.size(), false),
-        hourglass_needed(exemptions.size(), false);
-    for (const auto& [name, values] : runs) {
-        if (!values.is_object() || !values.contains("energy_balance_relative_error") ||
-            !values.contains("hourglass_fraction_of_internal"))
-            continue;
-        RunHealth h;
-        h.run = name;
-        h.balance_error = values["energy_balance_relative_error"].get<double>();
-        h.hourglass_fraction = values["hourglass_fraction_of_internal"].get<double>();
-        h.balance_ok = h.balance_error <= kMaxBalanceError;  // nan fails
-        h.hourglass_ok = h.hourglass_fraction <= kMaxHourglassFraction;
-        for (std::size_t k = 0; k < exemptions.size(); ++k) {
-            const HealthExemption& e = exemptions[k];
-            if (!e.matches(name)) continue;
-            matched[k] = true;
-            if (!e.balance.empty()) {
-                h.balance_exemption = e.balance;
-                balance_needed[k] = balance_needed[k] || !h.balance_ok;
-            }
-            if (!e.hourglass.empty()) {
-                h.hourglass_exemption = e.hourglass;
-                hourglass_needed[k] = hourglass_needed[k] || !h.hourglass_ok;
-            }
+    for (const auto& [name, values] : runs)
+        if (std::optional<RunHealth> h = judge_run(name, values, exemptions)) {
+            if (!h->passed()) problems.push_back(h->text());
+            out.push_back(std::move(*h));
         }
-        if (!h.passed()) problems.push_back(h.text());
-        out.push_back(std::move(h));
-    }
-    for (std::size_t k = 0; k < exemptions.size(); ++k) {
-        const HealthExemption& e = exemptions[k];
-        const std::string at = fmt::format("{}:{}", reference_file, e.line);
-        if (!matched[k])
-            problems.push_back(fmt::format("{}: the health exemption names run '{}', which the study did not record "
-                                           "(runs are named as in runs.json)", at, e.run));
-        else if (!e.balance.empty() && !balance_needed[k])
-            problems.push_back(fmt::format("{}: run '{}' is exempt from the balance limit but meets it (<= {:g} %): remove "
-                                           "the exemption", at, e.run, 100 * kMaxBalanceError));
-        else if (!e.hourglass.empty() && !hourglass_needed[k])
-            problems.push_back(fmt::format("{}: run '{}' is exempt from the hourglass limit but meets it (<= {:g} % of "
-                                           "internal): remove the exemption", at, e.run, 100 * kMaxHourglassFraction));
-    }
+    for (std::string& p : stale_exemptions(out, exemptions, reference_file)) problems.push_back(std::move(p));
     return out;
 }
 

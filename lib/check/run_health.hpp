@@ -18,11 +18,18 @@
 //
 // An exemption is part of the reference file's honesty: one that matches no run of the study, or
 // whose runs all meet the limit anyway, fails the study too, so that stale exemptions get removed.
+// A fem-explicit case file takes the same [[health_exemption]] tables for its own runs
+// (lib/explicit_case/CASE_FILE.md), judged the same way.
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
-#include <nlohmann/json.hpp>
+#include <nlohmann/json_fwd.hpp>
+
+namespace fem::input {
+class TomlTable;
+}
 
 namespace fem::check {
 
@@ -39,6 +46,8 @@ struct HealthExemption {
 /// The [[health_exemption]] entries of a reference file (strict: unknown keys, a missing run name or
 /// an exemption without a reason are InputErrors naming the line).
 std::vector<HealthExemption> load_health_exemptions(const std::filesystem::path& reference_file);
+/// The same from the root table of a TOML document already open (a case file's).
+std::vector<HealthExemption> read_health_exemptions(const input::TomlTable& root);
 
 /// The verdict on one recorded run.
 struct RunHealth {
@@ -50,6 +59,16 @@ struct RunHealth {
     nlohmann::json to_json() const;
     std::string text() const;  // one line for the study's printout
 };
+
+/// The verdict on one run, with the exemptions that match its name; none for values without
+/// "energy_balance_relative_error" and "hourglass_fraction_of_internal" (not an explicit run).
+std::optional<RunHealth> judge_run(const std::string& name, const nlohmann::json& values,
+                                   const std::vector<HealthExemption>& exemptions);
+
+/// The exemptions that are stale once every run has been judged: one that names no run of `judged`,
+/// or whose runs all meet the limit it exempts from (`file` and the entry's line name it).
+std::vector<std::string> stale_exemptions(const std::vector<RunHealth>& judged, const std::vector<HealthExemption>& exemptions,
+                                          const std::string& file);
 
 /// Judges every run whose values carry "energy_balance_relative_error" and
 /// "hourglass_fraction_of_internal" (explicit runs); `problems` receives the failures the study must

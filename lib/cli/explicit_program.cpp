@@ -13,7 +13,8 @@
 // current cycle, writes the state reached marked partial and exits 130.
 // Exit status: 0 a healthy run; 1 a run that finished but failed its health check (energy balance
 // error > 1 % or hourglass energy > 10 % of internal, check/run_health.hpp: the limits a study fails
-// a run for, with the same status 1), its files written for inspection; 2 bad input; 3 a run that
+// a run for, with the same status 1), its files written for inspection, or whose case file holds a
+// stale [[health_exemption]] (one no run needed, or naming no run); 2 bad input; 3 a run that
 // went unstable (nothing written); 4 any other error; 130 Ctrl-C.
 #include <iostream>
 #include <string>
@@ -48,9 +49,11 @@ int explicit_program(int argc, char** argv) {
             std::cerr << "fem-explicit: run health failed: " << (at == std::string::npos ? verdict : verdict.substr(at + 11))
                       << '\n';
         }
-        std::cerr << "fem-explicit: the results are in " << c.output.folder.string()
-                  << " for inspection, but are not to be relied on: energy that does not balance, or hourglass modes "
-                     "carrying the deformation, say the discretization does not resolve the loading\n";
+        for (const std::string& problem : outcome.stale_exemptions) std::cerr << "fem-explicit: " << problem << '\n';
+        if (!outcome.unhealthy.empty())
+            std::cerr << "fem-explicit: the results are in " << c.output.folder.string()
+                      << " for inspection, but are not to be relied on: energy that does not balance, or hourglass modes "
+                         "carrying the deformation, say the discretization does not resolve the loading\n";
         return 1;
     });
 }

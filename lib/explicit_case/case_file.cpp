@@ -448,7 +448,7 @@ void read_phases(const TomlTable& root, ExplicitCase& c) {
 ExplicitCase from_document(const input::TomlDocument& doc) {
     const TomlTable root = doc.root();
     root.allow({"control", "output", "material", "part", "rigid_part", "hand", "contact", "rigid_wall", "boundary", "load", "gravity",
-                "phase"});
+                "phase", "health_exemption"});
     ExplicitCase c;
     c.source = doc.source();
     c.base = doc.base();
@@ -583,6 +583,7 @@ ExplicitCase from_document(const input::TomlDocument& doc) {
         c.gravity = std::pair{acc, k};
     }
     read_phases(root, c);
+    c.health_exemptions = check::read_health_exemptions(root);
     doc.finish();
     return c;
 }
@@ -607,6 +608,7 @@ ExplicitCase phase_case(const ExplicitCase& c, std::size_t k) {
 void cut_at(ExplicitCase& c, double t_end) {
     if (!(t_end > 0.0)) throw InputError(fmt::format("{}: an end time must be > 0, got {}", c.source, t_end));
     c.control.end_time = t_end;
+    c.cut = true;
     std::erase_if(c.control.restart_times, [&](double t) { return t >= t_end; });
     while (c.phases.size() > 1 && c.phases.back().start >= t_end) c.phases.pop_back();
     if (c.phases.size() == 1) c.phases.clear();

@@ -45,6 +45,7 @@
 #include <string_view>
 #include <vector>
 
+#include "check/run_health.hpp"
 #include "contact/friction.hpp"
 #include "explicit/solver.hpp"
 #include "hand/scene.hpp"
@@ -191,6 +192,10 @@ struct ExplicitCase {
     /// plates, contacts and gravity are the case's parts and keys; hand_scene puts them in).
     std::optional<hand::Scene> hand;
     std::vector<Phase> phases;     // empty: one run
+    /// [[health_exemption]]: runs of the case allowed over a health limit, with the reason
+    /// (check/run_health.hpp; judged as a study's reference file's are).
+    std::vector<check::HealthExemption> health_exemptions;
+    bool cut = false;  // ended early by cut_at (--end-time): an exemption's runs need not reach its limit
 };
 
 /// Reads and validates a case file (InputError "file:line: key: problem").
@@ -207,7 +212,8 @@ hand::Scene hand_scene(const ExplicitCase& c);
 ExplicitCase phase_case(const ExplicitCase& c, std::size_t k);
 
 /// Ends the case at t_end (fem-explicit --end-time: a short run of a long case): phases starting at
-/// or after it and restart times from it on are dropped. InputError for t_end <= 0.
+/// or after it and restart times from it on are dropped; the health exemptions still apply, but one
+/// the shorter run does not need is not reported as stale. InputError for t_end <= 0.
 void cut_at(ExplicitCase& c, double t_end);
 
 /// The explicit model of a case: reads the meshes, builds parts, rigid parts, contact, boundary
@@ -237,10 +243,13 @@ ExplicitOptions solver_options(const ExplicitCase& c, const CaseModel& m, const 
 /// internal; fem-explicit then exits 1). The files of an unhealthy run are written all the same:
 /// unlike an unstable run (SolverError, nothing written), it is a result the user must be able to
 /// inspect.
+/// Stale exemptions (a [[health_exemption]] that names no run of the case, or whose runs all met the
+/// limit it exempts from) fail the case as well (fem-explicit exits 1), as in a study.
 struct CaseOutcome {
     std::string summary;
     std::vector<std::string> unhealthy;
-    bool healthy() const { return unhealthy.empty(); }
+    std::vector<std::string> stale_exemptions;
+    bool healthy() const { return unhealthy.empty() && stale_exemptions.empty(); }
 };
 
 /// Runs a case into c.output.folder as one io::RunFolder set (summary.txt, run.json,

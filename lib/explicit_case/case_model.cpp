@@ -341,12 +341,24 @@ void write_histories(const std::filesystem::path& dir, const History& h) {
 
 namespace {
 
+// The health of one run of a case (its [[health_exemption]]s applied): the verdict goes to `judged`,
+// a failed one's line to `unhealthy` as well.
+std::optional<check::RunHealth> judge(const ExplicitCase& c, const std::string& name, const nlohmann::json& values,
+                                      std::vector<check::RunHealth>& judged, std::vector<std::string>& unhealthy) {
+    std::optional<check::RunHealth> h = check::judge_run(name, values, c.health_exemptions);
+    if (h) {
+        if (!h->passed()) unhealthy.push_back(h->text());
+        judged.push_back(*h);
+    }
+    return h;
+}
+
 // One run of a case into `dir` (summary.txt, run.json, histories, VTU, restart dumps); the restart
-// dumps it wrote are added to `dumps`, the verdict of a failed health check to `unhealthy`.
+// dumps it wrote are added to `dumps`, its health verdict to `judged` (and to `unhealthy` if failed).
 // `interrupted`: Ctrl-C's message (the state reached is written, marked partial; not judged).
 std::string run_into(const ExplicitCase& c, const std::filesystem::path& dir, const std::filesystem::path& shown, bool quiet,
-                     std::vector<std::filesystem::path>& dumps, std::vector<std::string>& unhealthy,
-                     std::string& interrupted) {
+                     std::vector<std::filesystem::path>& dumps, std::vector<check::RunHealth>& judged,
+                     std::vector<std::string>& unhealthy, std::string& interrupted) {
     std::filesystem::create_directories(dir);
     CaseModel m(c);
     ExplicitOptions opt = solver_options(c, m, dir);
@@ -366,11 +378,13 @@ std::string run_into(const ExplicitCase& c, const std::filesystem::path& dir, co
         text = interrupted + "\n";
     } else {
         nlohmann::json j = s.to_json();
-        const auto health = check::judge_run_health({{s.name, j}}, {}, c.source, unhealthy);
         text = s.text();
-        for (const auto& h : health) {
-            text += "health: " + h.text() + "\n";
-            j["health"] = h.to_json();
+        if (const auto h = judge(c, s.name, j, judged, unhealthy)) {
+            text += "health: " + h->text() + "\n";
+            // A limit passed through the case file's exemption: its reason beside the verdict.
+            for (const auto& [ok, why] : {std::pair{h->balance_ok, h->balance_exemption}, std::pair{h->hourglass_ok, h->hourglass_exemption}})
+                if (!ok && !why.empty()) text += "health exemption: " + why + "\n";
+            j["health"] = h->to_json();
         }
         io::write_text_file(dir / "run.json", j.dump(2) + "\n");
     }
@@ -413,14 +427,15 @@ CaseOutcome run_case(const ExplicitCase& c, bool quiet, bool resume) {
     if (c.control.threads > 0) par::set_threads(c.control.threads);
     std::string text, interrupted;
     std::vector<std::string> unhealthy;
+    std::vector<check::RunHealth> judged;
     std::vector<std::filesystem::path> dumps;
     if (c.phases.empty() && resume) {
         ExplicitCase resumed = c;
         resumed.control.restart_from = resume_point(c, out, out.staging(), c.control.name);
         if (!quiet) std::cerr << "fem-explicit: resuming from " << resumed.control.restart_from.string() << '\n';
-        text = run_into(resumed, out.staging(), c.output.folder, quiet, dumps, unhealthy, interrupted);
+        text = run_into(resumed, out.staging(), c.output.folder, quiet, dumps, judged, unhealthy, interrupted);
     } else if (c.phases.empty()) {
-        text = run_into(c, out.staging(), c.output.folder, quiet, dumps, unhealthy, interrupted);
+        text = run_into(c, out.staging(), c.output.folder, quiet, dumps, judged, unhealthy, interrupted);
     } else {
         // Phase k runs to the next phase's start and writes a dump there; phase k + 1 restarts from it
         // with its own model (objects released), as the thesis's flip restarts from the grasp.
@@ -447,7 +462,7 @@ CaseOutcome run_case(const ExplicitCase& c, bool quiet, bool resume) {
             }
             std::ifstream summary(dir / "summary.txt"), run(dir / "run.json");
             text += header(first, p) + std::string((std::istreambuf_iterator<char>(summary)), std::istreambuf_iterator<char>());
-            check::judge_run_health({{p.control.name, nlohmann::json::parse(run)}}, {}, c.source, unhealthy);
+            judge(c, p.control.name, nlohmann::json::parse(run), judged, unhealthy);
             if (first + 1 < c.phases.size()) dumps.push_back(ExplicitSolver::latest_restart(dir, p.control.name));
         }
         for (std::size_t k = first; k < c.phases.size() && interrupted.empty(); ++k) {
@@ -461,16 +476,20 @@ CaseOutcome run_case(const ExplicitCase& c, bool quiet, bool resume) {
             if (k + 1 < c.phases.size()) p.control.restart_times.push_back(c.phases[k + 1].start);
             const std::size_t before = dumps.size();
             text += header(k, p);
-            text += run_into(p, out.staging() / c.phases[k].name, c.output.folder / c.phases[k].name, quiet, dumps, unhealthy,
-                             interrupted);
+            text += run_into(p, out.staging() / c.phases[k].name, c.output.folder / c.phases[k].name, quiet, dumps, judged,
+                             unhealthy, interrupted);
             if (k + 1 < c.phases.size() && interrupted.empty() && dumps.size() == before)
                 throw SolverError(fmt::format("{}: phase '{}' wrote no restart dump at {} s", c.source, c.phases[k].name, c.phases[k + 1].start));
         }
         io::write_text_file(out.staging() / "summary.txt", text);
     }
+    // An exemption that names no run of the case, or whose runs all met the limit, is reported as a
+    // study's is: stale exemptions get removed (not on a run cut short by --end-time).
+    std::vector<std::string> stale;
+    if (interrupted.empty() && !c.cut) stale = check::stale_exemptions(judged, c.health_exemptions, c.source);
     out.commit();
     if (!interrupted.empty()) throw Interrupted(interrupted + "; the state reached is in " + c.output.folder.string());
-    return {text, unhealthy};
+    return {text, unhealthy, stale};
 }
 
 }  // namespace fem::explicit_case

@@ -237,6 +237,35 @@ TEST(ExplicitCase, AnUnhealthyRunIsReportedAndItsFilesWritten) {
         EXPECT_TRUE(fs::exists(c.output.folder / f)) << f;
 }
 
+// A case file's [[health_exemption]] (check/run_health.hpp, as in a study's reference file): the
+// fixture whose block the mass damping translates rigidly (internal energy at round-off, its hourglass
+// share noise) passes with the exemption's reason in its summary. An exemption its run does not need
+// is stale and fails the case, unless the run was cut short (--end-time), which may not reach it.
+TEST(ExplicitCase, AHealthExemptionPassesItsRunAndAStaleOneFailsTheCase) {
+    ExplicitCase belt = read_case(kCases / "block_damped_on_a_belt.toml");
+    ASSERT_EQ(belt.health_exemptions.size(), 1u);
+    belt.output.folder = scratch("exempt") / "out";
+    const CaseOutcome exempt = run_case(belt, true);
+    EXPECT_TRUE(exempt.healthy()) << exempt.summary;
+    EXPECT_NE(exempt.summary.find("(exempt, limit 10 %)"), std::string::npos) << exempt.summary;
+    EXPECT_NE(exempt.summary.find("health exemption: rigid translation"), std::string::npos) << exempt.summary;
+
+    ExplicitCase bar = read_case(kCases / "bar_wave.toml");  // healthy: hourglass 6e-5 of internal
+    bar.health_exemptions = belt.health_exemptions;
+    bar.health_exemptions[0].run = bar.control.name;
+    bar.output.folder = scratch("stale") / "out";
+    const CaseOutcome stale = run_case(bar, true);
+    EXPECT_TRUE(stale.unhealthy.empty()) << stale.summary;
+    ASSERT_EQ(stale.stale_exemptions.size(), 1u);
+    EXPECT_NE(stale.stale_exemptions[0].find("is exempt from the hourglass limit but meets it"), std::string::npos)
+        << stale.stale_exemptions[0];
+    EXPECT_FALSE(stale.healthy());
+
+    cut_at(bar, 1.0e-4);
+    bar.output.folder = scratch("stale-cut") / "out";
+    EXPECT_TRUE(run_case(bar, true).healthy());
+}
+
 // Ctrl-C (SIGINT under the solver's InterruptGuard): the run stops, writes the state reached marked
 // partial, commits the set and reports Interrupted (fem-explicit exits 130).
 TEST(ExplicitCase, InterruptedRunWritesAPartialSet) {
