@@ -2,6 +2,7 @@
 
 #include <string>
 
+#include "check/build_paths.hpp"
 #include "core/error.hpp"
 
 namespace fem::check {
@@ -12,8 +13,7 @@ std::filesystem::path side_run_folder(std::string_view study, std::string_view r
             if (i + 1 >= args.size()) throw InputError("option --results needs a value");
             return std::filesystem::absolute(args[i + 1]);
         }
-    // FEM_RESULTS_DIR: build/results of this build tree, an absolute path (CMakeLists.txt).
-    return std::filesystem::absolute(std::filesystem::path(FEM_RESULTS_DIR) / study / run);
+    return std::filesystem::absolute(results_dir() / study / run);
 }
 
 }  // namespace fem::check

@@ -12,6 +12,7 @@
 
 #include <fmt/format.h>
 
+#include "check/build_paths.hpp"
 #include "check/cases.hpp"
 #include "check/run_health.hpp"
 #include "core/error.hpp"
@@ -165,8 +166,8 @@ std::string join_joined(const std::string& a, const std::string& b) {
 }  // namespace
 
 Study::Study(std::string name, int argc, char** argv) : name_(std::move(name)) {
-    source_dir_ = FEM_SOURCE_DIR;
-    results_dir_ = std::filesystem::path(FEM_RESULTS_DIR) / name_;
+    source_dir_ = check::source_dir();
+    results_dir_ = check::results_dir() / name_;
     std::filesystem::path reference_path = default_reference_path(name_);
     for (int i = 1; i < argc; ++i) {
         const std::string arg = argv[i];
@@ -220,7 +221,7 @@ Study::Study(std::string name, int argc, char** argv) : name_(std::move(name)) {
 Study::~Study() = default;
 
 std::filesystem::path default_reference_path(std::string_view study) {
-    return std::filesystem::path(FEM_SOURCE_DIR) / "reference" / (std::string(study) + ".toml");
+    return source_dir() / "reference" / (std::string(study) + ".toml");
 }
 
 const ReferenceEntry& Study::entry_to_check(std::string_view id) const {

@@ -4,21 +4,20 @@
 
 #include <algorithm>
 #include <cmath>
+#include <csignal>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <tuple>
 
-#include <fmt/format.h>
-
-#include <csignal>
-
 #include <unistd.h>
 
+#include <fmt/format.h>
+
+#include "check/build_paths.hpp"
+#include "core/error.hpp"
 #include "core/progress.hpp"
 #include "explicit/parallel.hpp"
-
-#include "core/error.hpp"
 #include "explicit_case/case_file.hpp"
 #include "hand/ellipsoid.hpp"
 #include "hand/football.hpp"
@@ -29,7 +28,7 @@ using namespace fem::explicit_case;
 
 namespace {
 
-const fs::path kSource = FEM_SOURCE_DIR;
+const fs::path kSource = check::source_dir();
 const fs::path kCases = kSource / "tests/explicit_case/cases";
 
 fs::path scratch(const std::string& name) {
