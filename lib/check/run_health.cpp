@@ -68,6 +68,17 @@ std::optional<RunHealth> judge_run(const std::string& name, const nlohmann::json
     return h;
 }
 
+std::optional<RunHealth> judge_run_into(const std::string& name, const nlohmann::json& values,
+                                        const std::vector<HealthExemption>& exemptions, std::vector<RunHealth>& judged,
+                                        std::vector<std::string>& problems) {
+    std::optional<RunHealth> h = judge_run(name, values, exemptions);
+    if (h) {
+        if (!h->passed()) problems.push_back(h->text());
+        judged.push_back(*h);
+    }
+    return h;
+}
+
 std::vector<std::string> stale_exemptions(const std::vector<RunHealth>& judged, const std::vector<HealthExemption>& exemptions,
                                           const std::string& file) {
     std::vector<std::string> problems;
@@ -98,11 +109,7 @@ std::vector<RunHealth> judge_run_health(const std::vector<std::pair<std::string,
                                         const std::vector<HealthExemption>& exemptions, const std::string& reference_file,
                                         std::vector<std::string>& problems) {
     std::vector<RunHealth> out;
-    for (const auto& [name, values] : runs)
-        if (std::optional<RunHealth> h = judge_run(name, values, exemptions)) {
-            if (!h->passed()) problems.push_back(h->text());
-            out.push_back(std::move(*h));
-        }
+    for (const auto& [name, values] : runs) judge_run_into(name, values, exemptions, out, problems);
     for (std::string& p : stale_exemptions(out, exemptions, reference_file)) problems.push_back(std::move(p));
     return out;
 }

@@ -65,6 +65,12 @@ struct RunHealth {
 std::optional<RunHealth> judge_run(const std::string& name, const nlohmann::json& values,
                                    const std::vector<HealthExemption>& exemptions);
 
+/// judge_run, its verdict appended to `judged` and, when failed, its line to `problems`; the verdict
+/// (none for a run that is not explicit).
+std::optional<RunHealth> judge_run_into(const std::string& name, const nlohmann::json& values,
+                                        const std::vector<HealthExemption>& exemptions, std::vector<RunHealth>& judged,
+                                        std::vector<std::string>& problems);
+
 /// The exemptions that are stale once every run has been judged: one that names no run of `judged`,
 /// or whose runs all meet the limit it exempts from (`file` and the entry's line name it).
 std::vector<std::string> stale_exemptions(const std::vector<RunHealth>& judged, const std::vector<HealthExemption>& exemptions,

@@ -341,18 +341,6 @@ void write_histories(const std::filesystem::path& dir, const History& h) {
 
 namespace {
 
-// The health of one run of a case (its [[health_exemption]]s applied): the verdict goes to `judged`,
-// a failed one's line to `unhealthy` as well.
-std::optional<check::RunHealth> judge(const ExplicitCase& c, const std::string& name, const nlohmann::json& values,
-                                      std::vector<check::RunHealth>& judged, std::vector<std::string>& unhealthy) {
-    std::optional<check::RunHealth> h = check::judge_run(name, values, c.health_exemptions);
-    if (h) {
-        if (!h->passed()) unhealthy.push_back(h->text());
-        judged.push_back(*h);
-    }
-    return h;
-}
-
 // One run of a case into `dir` (summary.txt, run.json, histories, VTU, restart dumps); the restart
 // dumps it wrote are added to `dumps`, its health verdict to `judged` (and to `unhealthy` if failed).
 // `interrupted`: Ctrl-C's message (the state reached is written, marked partial; not judged).
@@ -379,7 +367,7 @@ std::string run_into(const ExplicitCase& c, const std::filesystem::path& dir, co
     } else {
         nlohmann::json j = s.to_json();
         text = s.text();
-        if (const auto h = judge(c, s.name, j, judged, unhealthy)) {
+        if (const auto h = check::judge_run_into(s.name, j, c.health_exemptions, judged, unhealthy)) {
             text += "health: " + h->text() + "\n";
             // A limit passed through the case file's exemption: its reason beside the verdict.
             for (const auto& [ok, why] : {std::pair{h->balance_ok, h->balance_exemption}, std::pair{h->hourglass_ok, h->hourglass_exemption}})
@@ -462,7 +450,7 @@ CaseOutcome run_case(const ExplicitCase& c, bool quiet, bool resume) {
             }
             std::ifstream summary(dir / "summary.txt"), run(dir / "run.json");
             text += header(first, p) + std::string((std::istreambuf_iterator<char>(summary)), std::istreambuf_iterator<char>());
-            judge(c, p.control.name, nlohmann::json::parse(run), judged, unhealthy);
+            check::judge_run_into(p.control.name, nlohmann::json::parse(run), c.health_exemptions, judged, unhealthy);
             if (first + 1 < c.phases.size()) dumps.push_back(ExplicitSolver::latest_restart(dir, p.control.name));
         }
         for (std::size_t k = first; k < c.phases.size() && interrupted.empty(); ++k) {
