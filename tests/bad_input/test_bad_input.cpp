@@ -17,6 +17,7 @@
 
 #include <unistd.h>
 
+#include "check/build_paths.hpp"
 #include "cli/programs.hpp"
 #include "input/toml_input.hpp"
 
@@ -24,7 +25,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const fs::path kCorpus = FEM_BAD_INPUT_DIR;
+const fs::path kCorpus = fem::check::source_dir() / "tests" / "bad_input";
 
 struct Case {
     std::string name, program, input;

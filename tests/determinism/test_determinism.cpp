@@ -16,6 +16,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "check/build_paths.hpp"
 #include "explicit/solver.hpp"
 
 namespace fs = std::filesystem;
@@ -33,8 +34,8 @@ std::string slurp(const fs::path& p) {
 
 // Runs the study with `threads` OpenMP threads into `dir`; returns the exit status.
 int run_study(int threads, const fs::path& dir) {
-    const std::string cmd = "OMP_NUM_THREADS=" + std::to_string(threads) + " '" + std::string(FEM_BIN_DIR) +
-                            "/finger_twist' --results '" + dir.string() + "' > '" + dir.string() + ".log' 2>&1";
+    const std::string cmd = "OMP_NUM_THREADS=" + std::to_string(threads) + " '" + (fem::check::bin_dir() / "finger_twist").string() +
+                            "' --results '" + dir.string() + "' > '" + dir.string() + ".log' 2>&1";
     return std::system(cmd.c_str());
 }
 

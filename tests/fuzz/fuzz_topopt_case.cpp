@@ -11,17 +11,22 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <string_view>
 
+#include "check/build_paths.hpp"
 #include "core/error.hpp"
 #include "core/memory.hpp"
 #include "topopt/case_file.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+    // Relative paths in the input resolve under the corpus folder (check/build_paths.hpp: no
+    // clone's own path is compiled into this file, so ccache reuses it in another clone).
+    static const std::filesystem::path corpus_dir = fem::check::source_dir() / "tests/fuzz/corpus/topopt_case";
     static const bool limited = (fem::set_memory_limit(8u << 20), true);
     (void)limited;
     try {
-        fem::topopt::parse_case(std::string_view(reinterpret_cast<const char*>(data), size), "fuzz.toml", FEM_FUZZ_BASE);
+        fem::topopt::parse_case(std::string_view(reinterpret_cast<const char*>(data), size), "fuzz.toml", corpus_dir);
     } catch (const fem::InputError& e) {
         if (std::getenv("FEM_FUZZ_VERBOSE")) std::fprintf(stderr, "refused: %s\n", e.what());  // for triage
     }

@@ -18,6 +18,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include "check/build_paths.hpp"
 #include "mesh/mesh.hpp"
 
 namespace fs = std::filesystem;
@@ -54,7 +55,7 @@ void write_beam(const fs::path& msh) {
 
 // Starts fem-modal on the case into `out` (stdout and stderr to out.log); returns its pid.
 pid_t start(const fs::path& out) {
-    const std::string program = std::string(FEM_BIN_DIR) + "/fem-modal";
+    const std::string program = (fem::check::bin_dir() / "fem-modal").string();
     const std::string case_file = (kWork / "beam.toml").string(), dir = out.string(), log = out.string() + ".log";
     const pid_t pid = ::fork();
     if (pid == 0) {
