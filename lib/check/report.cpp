@@ -239,20 +239,25 @@ std::string time_split(const nlohmann::json& timing) {
     return out;
 }
 
-// "ok", or "failed" with the limit the run broke (run health: check/run_health.hpp).
+// "ok"; "exempt" or "failed" with the limits the run broke, as its judgement recorded them
+// (RunHealth::to_json: a verdict per limit).
 std::string health_text(const nlohmann::json& run) {
     const auto it = run.is_object() ? run.find("health") : run.end();
     if (it == run.end() || !it->is_object()) return "-";
     const nlohmann::json& h = *it;
     const auto passed = h.find("passed");
-    if (passed != h.end() && passed->is_boolean() && passed->get<bool>()) return "ok";
-    std::string out = "failed";
+    const bool ok = passed != h.end() && passed->is_boolean() && passed->get<bool>();
+    std::string broken;  // "balance 0.02 > 0.01" per limit not met
     for (const auto& [what, value, limit] : {std::tuple{"balance", "balance_error", "balance_limit"},
                                              std::tuple{"hourglass", "hourglass_fraction", "hourglass_limit"}}) {
+        const auto verdict = h.find(std::string(what) + "_verdict");
+        if (verdict == h.end() || !verdict->is_string() || *verdict == "ok") continue;
         const auto x = number_at(h, value), lim = number_at(h, limit);
-        if (x && lim && *x > *lim) out += std::string(": ") + what + " " + compact(*x) + " > " + compact(*lim);
+        broken += std::string(broken.empty() ? ": " : ", ") + what + (x ? " " + compact(*x) : " (not a number)");
+        if (x && lim) broken += " > " + compact(*lim);
     }
-    return out;
+    if (ok) return broken.empty() ? "ok" : "exempt" + broken;
+    return "failed" + broken;
 }
 
 std::vector<std::string> explicit_run_row(const nlohmann::json& run) {

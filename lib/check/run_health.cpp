@@ -29,11 +29,17 @@ std::vector<HealthExemption> read_health_exemptions(const input::TomlTable& root
     return out;
 }
 
+const char* RunHealth::limit_verdict(bool ok, const std::string& exemption) {
+    return ok ? "ok" : exemption.empty() ? "failed" : "exempt";
+}
+
 nlohmann::json RunHealth::to_json() const {
     nlohmann::json j = {{"balance_error", balance_error},
                         {"balance_limit", kMaxBalanceError},
+                        {"balance_verdict", limit_verdict(balance_ok, balance_exemption)},
                         {"hourglass_fraction", hourglass_fraction},
                         {"hourglass_limit", kMaxHourglassFraction},
+                        {"hourglass_verdict", limit_verdict(hourglass_ok, hourglass_exemption)},
                         {"passed", passed()}};
     if (!balance_exemption.empty()) j["balance_exemption"] = balance_exemption;
     if (!hourglass_exemption.empty()) j["hourglass_exemption"] = hourglass_exemption;
@@ -41,7 +47,10 @@ nlohmann::json RunHealth::to_json() const {
 }
 
 std::string RunHealth::text() const {
-    auto verdict = [](bool ok, const std::string& exemption) { return ok ? "ok" : exemption.empty() ? "FAIL" : "exempt"; };
+    auto verdict = [](bool ok, const std::string& exemption) {
+        const std::string v = limit_verdict(ok, exemption);
+        return v == "failed" ? std::string("FAIL") : v;
+    };
     return fmt::format("{:<6} run health {}: energy balance error {:.3g} % ({}, limit {:g} %), hourglass {:.3g} % of "
                        "internal ({}, limit {:g} %)",
                        passed() ? "pass" : "FAIL", run, 100 * balance_error, verdict(balance_ok, balance_exemption),

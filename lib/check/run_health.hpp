@@ -56,6 +56,10 @@ struct RunHealth {
     bool balance_ok = true, hourglass_ok = true;
     std::string balance_exemption, hourglass_exemption;  // the reason, when exempt
     bool passed() const { return (balance_ok || !balance_exemption.empty()) && (hourglass_ok || !hourglass_exemption.empty()); }
+    /// The verdict on one limit: "ok" (met), "exempt" (broken, with an exemption) or "failed".
+    static const char* limit_verdict(bool ok, const std::string& exemption);
+    /// runs.json's "health": the measures, limits and verdicts ("balance_verdict",
+    /// "hourglass_verdict"), "passed", and the exemptions' reasons; the report shows the verdicts.
     nlohmann::json to_json() const;
     std::string text() const;  // one line for the study's printout
 };

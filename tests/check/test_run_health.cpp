@@ -48,6 +48,14 @@ TEST(RunHealth, LimitsAndExemptions) {
     EXPECT_TRUE(h[3].passed());  // both limits exceeded, both exempt with a reason
     EXPECT_EQ(h[3].to_json()["hourglass_exemption"], "coarse mesh, stated in the README");
     EXPECT_FALSE(h[4].passed());  // nan balance error
+    // runs.json records a verdict per limit (the report shows them).
+    EXPECT_EQ(h[0].to_json()["balance_verdict"], "ok");
+    EXPECT_EQ(h[1].to_json()["balance_verdict"], "failed");
+    EXPECT_EQ(h[1].to_json()["hourglass_verdict"], "ok");
+    EXPECT_EQ(h[2].to_json()["hourglass_verdict"], "failed");
+    EXPECT_EQ(h[3].to_json()["balance_verdict"], "exempt");
+    EXPECT_EQ(h[3].to_json()["hourglass_verdict"], "exempt");
+    EXPECT_EQ(h[4].to_json()["balance_verdict"], "failed");
     EXPECT_TRUE(mentions(problems, "FAIL   run health leaky: energy balance error 2.3 %"));
     EXPECT_TRUE(mentions(problems, "run health hourglassy"));
     EXPECT_TRUE(mentions(problems, "reference/demo.toml:12: run 'healthy' is exempt from the balance limit but meets it"));

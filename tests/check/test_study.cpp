@@ -510,10 +510,20 @@ TEST(Report, ListsEveryStudyAndTheDiscrepancies) {
 TEST(Report, SolverRunsNameAFailedHealthAndSurviveAMalformedRunsFile) {
     TempDir dir;
     run_demo_study(dir.path);
-    // A run that failed its health, one without values, one with values of the wrong types, a number.
+    // A run that failed its health, one exempt from a limit (passed, its verdict says so), one whose
+    // balance error was not a number (null in JSON), one without values, one with values of the wrong
+    // types, a number.
     write(dir.path / "results" / "demo" / "runs.json", R"([
         {"name": "drop", "values": {"steps": 10, "timing_s": {"elements": 3.0, "update": 1.0}},
-         "health": {"passed": false, "balance_error": 0.02, "balance_limit": 0.01, "hourglass_fraction": 0.05, "hourglass_limit": 0.1}},
+         "health": {"passed": false, "balance_error": 0.02, "balance_limit": 0.01, "balance_verdict": "failed",
+                    "hourglass_fraction": 0.05, "hourglass_limit": 0.1, "hourglass_verdict": "ok"}},
+        {"name": "slide", "values": {"steps": 20, "timing_s": {"elements": 1.0}},
+         "health": {"passed": true, "balance_error": 0.001, "balance_limit": 0.01, "balance_verdict": "ok",
+                    "hourglass_fraction": 0.5, "hourglass_limit": 0.1, "hourglass_verdict": "exempt",
+                    "hourglass_exemption": "a rigid block"}},
+        {"name": "blown", "values": {"steps": 30, "timing_s": {"elements": 1.0}},
+         "health": {"passed": false, "balance_error": null, "balance_limit": 0.01, "balance_verdict": "failed",
+                    "hourglass_fraction": null, "hourglass_limit": 0.1, "hourglass_verdict": "failed"}},
         {"name": "bare"},
         {"name": "odd", "values": {"steps": "many", "timing_s": {"elements": "x"}, "restarted_from": 3}, "health": []},
         7])");
@@ -522,6 +532,8 @@ TEST(Report, SolverRunsNameAFailedHealthAndSurviveAMalformedRunsFile) {
     const std::string md((std::istreambuf_iterator<char>(md_in)), {});
     EXPECT_NE(md.find("| drop |  |  |  | 10 |"), std::string::npos) << md;
     EXPECT_NE(md.find("| failed: balance 0.02 > 0.01 |  |  | elements 75\u00a0%, update 25\u00a0% |"), std::string::npos) << md;
+    EXPECT_NE(md.find("| exempt: hourglass 0.5 > 0.1 |"), std::string::npos) << md;
+    EXPECT_NE(md.find("| failed: balance (not a number), hourglass (not a number) |"), std::string::npos) << md;
     EXPECT_NE(md.find("| odd |  |  |  |  |"), std::string::npos) << md;  // "many" steps: not a count
     EXPECT_NE(md.find("| bare |"), std::string::npos) << md;
 }
