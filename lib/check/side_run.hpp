@@ -4,7 +4,7 @@
 // its files belong under build/results/<study>/ like the study's (DESIGN.md, "Outputs"), never in
 // whatever directory the program was started from.
 //
-//   const auto dir = check::side_run_folder("chicken_shackling", "grasp-case-4", {argv, argc});
+//   const auto dir = check::side_run_folder("chicken_shackling", "grasp-case-4", results_option);
 //   io::RunFolder out(dir, "chicken_shackling --grasp");   // one run's set, locked (io/run_folder.hpp)
 //   ... write into out.staging() ...
 //   out.commit();
@@ -14,15 +14,14 @@
 // the other's files, and a side run never overwrites a file the study run judged (e.g. the study's
 // shackle-rotating.dat).
 #include <filesystem>
-#include <span>
 #include <string_view>
 
 namespace fem::check {
 
-/// The absolute folder of side run `run` of `study`: DIR of a `--results DIR` in `args` (relative to
-/// the current directory, as a user types it) when there is one, else <build>/results/<study>/<run>
-/// (the build's results folder, fixed when the program was built: the same from any directory).
-/// Throws InputError for a `--results` without a value.
-std::filesystem::path side_run_folder(std::string_view study, std::string_view run, std::span<char* const> args);
+/// The absolute folder of side run `run` of `study`: `results_option`, the DIR of the command line's
+/// `--results DIR` (relative to the current directory, as a user types it), when it is not empty,
+/// else <build>/results/<study>/<run> (the build's results folder, fixed when the program was built:
+/// the same from any directory).
+std::filesystem::path side_run_folder(std::string_view study, std::string_view run, const std::filesystem::path& results_option);
 
 }  // namespace fem::check

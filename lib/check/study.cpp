@@ -18,6 +18,7 @@
 #include "core/error.hpp"
 #include "core/progress.hpp"
 #include "core/program.hpp"
+#include "input/arguments.hpp"
 #include "io/atomic_file.hpp"
 #include "io/gnuplot.hpp"
 #include "io/run_folder.hpp"
@@ -142,9 +143,13 @@ const std::vector<std::string>& study_order() {
     return order;
 }
 
-namespace {
+const std::vector<std::string_view>& study_options() {
+    static const std::vector<std::string_view> options = {"--results", "--figures", "--reference", "--full",
+                                                          "--jobs",    "--quiet",   "--help",      "-h"};
+    return options;
+}
 
-void usage(const std::string& name) {
+void print_study_usage(const std::string& name) {
     std::cout << "usage: " << name << " [--results DIR] [--figures DIR] [--reference FILE] [--full] [--jobs N] [--quiet]\n"
               << "  Runs the study, compares with reference/" << name << ".toml and writes DIR/checks.json.\n"
               << "  --results DIR    where data, checks.json and runs.json go (default build/results/" << name << ")\n"
@@ -156,6 +161,8 @@ void usage(const std::string& name) {
               << "                   hardware threads; 1: one after another); results are the same\n"
               << "  --quiet          no progress lines of long runs on stderr (core/progress.hpp)\n";
 }
+
+namespace {
 
 std::string join_joined(const std::string& a, const std::string& b) {
     if (a.empty()) return b;
@@ -169,31 +176,18 @@ Study::Study(std::string name, int argc, char** argv) : name_(std::move(name)) {
     source_dir_ = check::source_dir();
     results_dir_ = check::results_dir() / name_;
     std::filesystem::path reference_path = default_reference_path(name_);
-    for (int i = 1; i < argc; ++i) {
-        const std::string arg = argv[i];
-        auto value = [&]() -> std::string {
-            if (i + 1 >= argc) throw InputError("option " + arg + " needs a value");
-            return argv[++i];
-        };
-        if (arg == "--results") results_dir_ = value();
-        else if (arg == "--figures") figures_dir_ = value();
-        else if (arg == "--reference") reference_path = value();
-        else if (arg == "--full") full_ = true;
-        else if (arg == "--quiet") Progress::set_quiet(true);
-        else if (arg == "--jobs") {
-            const std::string v = value();
-            std::size_t end = 0;
-            try {
-                jobs_ = std::stoi(v, &end);
-            } catch (const std::exception&) {
-                end = 0;
-            }
-            if (end != v.size() || jobs_ < 1) throw InputError("--jobs '" + v + "': a positive number of cases expected");
-        }
-        else if (arg == "--help" || arg == "-h") {
-            usage(name_);
+    input::Arguments args(argc, argv, study_options());
+    while (args.next()) {
+        if (args.is("--results")) results_dir_ = args.value();
+        else if (args.is("--figures")) figures_dir_ = args.value();
+        else if (args.is("--reference")) reference_path = args.value();
+        else if (args.is("--full")) full_ = true;
+        else if (args.is("--quiet")) Progress::set_quiet(true);
+        else if (args.is("--jobs")) jobs_ = args.integer<int>({.min = 1});
+        else if (args.is("--help") || args.is("-h")) {
+            print_study_usage(name_);
             std::exit(0);
-        } else throw InputError("unknown option '" + arg + "' (see --help)");
+        } else args.unknown();
     }
     reference_ = load_reference(reference_path);
     health_exemptions_ = load_health_exemptions(reference_path);

@@ -20,6 +20,7 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -153,6 +154,12 @@ private:
 /// main() of a study: builds the Study, runs body, finishes; InputError/SolverError become a
 /// message and a non-zero exit (see fem::run_program).
 int run_study(std::string name, int argc, char** argv, const std::function<void(Study&)>& body);
+
+/// The options every study program takes (Study's constructor reads them; a study with side runs of
+/// its own, e.g. chicken_shackling --grasp, knows them so as to refuse them by name there).
+const std::vector<std::string_view>& study_options();
+/// A study program's usage (its --help) on standard output.
+void print_study_usage(const std::string& name);
 
 /// The canonical order of the thesis's studies (DESIGN.md), used by the report.
 const std::vector<std::string>& study_order();

@@ -6,7 +6,7 @@
 
 namespace fem::input {
 
-Arguments::Arguments(int argc, char** argv, std::initializer_list<std::string_view> options)
+Arguments::Arguments(int argc, char** argv, const std::vector<std::string_view>& options)
     : options_(options.begin(), options.end()) {
     for (int i = 1; i < argc; ++i) args_.emplace_back(argv[i]);
 }
@@ -28,6 +28,12 @@ double Arguments::real(Range range) {
     const std::string option = current_;
     const std::string v = value();
     return parse_real(v, {"command line", 0, option}, range);
+}
+
+std::vector<std::string> Arguments::operands() {
+    std::vector<std::string> out;
+    while (next_ < args_.size() && args_[next_].rfind("--", 0) != 0) out.push_back(args_[next_++]);
+    return out;
 }
 
 void Arguments::positional(std::string& slot) {

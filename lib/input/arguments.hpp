@@ -11,7 +11,6 @@
 //       else if (args.is("--scale")) scale = args.real(input::Range::positive());
 //       else args.positional(case_file);    // the one positional argument (a second is refused)
 //   }
-#include <initializer_list>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -23,7 +22,7 @@ namespace fem::input {
 class Arguments {
 public:
     /// `options`: every option the program knows (for "unknown option" and "did you mean").
-    Arguments(int argc, char** argv, std::initializer_list<std::string_view> options);
+    Arguments(int argc, char** argv, const std::vector<std::string_view>& options);
 
     /// Moves to the next argument; false at the end.
     bool next();
@@ -40,6 +39,10 @@ public:
         return parse_integer<I>(v, {"command line", 0, option}, limits);
     }
     double real(Range range = Range::any());
+    /// The operands of the current option: the arguments after it up to the next option (an argument
+    /// that starts with "--"), consumed; none is an empty list. "--shackle rotating 0.13 --results
+    /// out" gives {"rotating", "0.13"} for --shackle. A negative number ("-30") is an operand.
+    std::vector<std::string> operands();
 
     /// Stores the current argument as the positional argument `slot`; InputError for an unknown
     /// option (an argument starting with '-') or when the slot is already filled.

@@ -84,6 +84,7 @@
 #include "contact/surface.hpp"
 #include "core/error.hpp"
 #include "core/program.hpp"
+#include "core/progress.hpp"
 #include "core/units.hpp"
 #include "explicit/offset_tie.hpp"
 #include "explicit/parallel.hpp"
@@ -92,6 +93,7 @@
 #include "explicit/solver.hpp"
 #include "explicit/tet_groups.hpp"
 #include "hand/scene.hpp"
+#include "input/arguments.hpp"
 #include "input/numbers.hpp"
 #include "io/atomic_file.hpp"
 #include "io/gnuplot.hpp"
@@ -1581,168 +1583,232 @@ void run(check::Study& study) {
     study.plot();
 }
 
+// ---- Side runs (README: "Side runs"): one mode of the program other than the study run ----
+
+constexpr const char* kSideRunUsage =
+    "side runs (one at a time; files go to build/results/chicken_shackling/<run>/, or to --results DIR):\n"
+    "  --calibrate [limb ...]        re-derive the limb widths from Table 5-2 (limbs 1-3; default all three)\n"
+    "  --shackle [rotating|inverting [end time [mass scaling step [drive ramp [absolute|drive]]]]]\n"
+    "                                one Step 4 run alone (Figs 5-20, 5-22; default rotating to 0.13 s)\n"
+    "  --grasp [case [end time]]     one Step 3 case of Table 5-4 alone (1..5, default 4, to 1.1 s: ~20 min of a core)\n"
+    "      --dump-every S            its restart dumps every S s of model time (default 0.025)\n"
+    "      --resume                  continue a killed --grasp run from its newest dump\n"
+    "      --friction-decay C        Eq 2-35's decay coefficient c_d [s/m] (default 0: mu = mu_s)\n"
+    "      --drum-phase DEG          the drum turned this much further at t = 0 (-90..90)\n"
+    "  --grasp-verdicts [record ...] Step 3's checks judged on --grasp records (default: the five side runs')\n"
+    "  --quiet                       no progress lines on stderr\n";
+
+/// A side run's command line, read whole: every option known, each value checked, an option that
+/// belongs to another mode refused by name (a typo is an input error, never a 40-minute run of the
+/// plain case).
+struct SideRunCommand {
+    std::string mode;                   // "--calibrate", "--shackle", "--grasp", "--grasp-verdicts"; empty: the study run
+    std::vector<std::string> operands;  // the mode's operands (up to the next option)
+    std::filesystem::path results;      // --results DIR (empty: the side run's default folder)
+    GraspRestart restart;
+    GraspVariant variant;
+    bool help = false, quiet = false;
+};
+
+SideRunCommand parse_side_run(int argc, char** argv) {
+    const std::vector<std::string_view> modes = {"--calibrate", "--shackle", "--grasp", "--grasp-verdicts"};
+    std::vector<std::string_view> known(modes);
+    known.insert(known.end(), {"--resume", "--friction-decay", "--drum-phase", "--dump-every"});
+    known.insert(known.end(), check::study_options().begin(), check::study_options().end());
+    input::Arguments args(argc, argv, known);
+    SideRunCommand c;
+    std::vector<std::string> grasp_options, study_options;
+    while (args.next()) {
+        const std::string option = args.current();
+        if (std::ranges::find(modes, option) != modes.end()) {
+            if (!c.mode.empty())
+                throw InputError(fmt::format("command line: one side run at a time, got {} and {} (see --help)", c.mode, option));
+            c.mode = option;
+            c.operands = args.operands();
+        } else if (option == "--resume") {
+            c.restart.resume = true;
+            grasp_options.push_back(option);
+        } else if (option == "--friction-decay") {
+            c.variant.friction_decay = args.real(input::Range::non_negative());  // c_d [s/m]
+            grasp_options.push_back(option);
+        } else if (option == "--drum-phase") {
+            c.variant.drum_phase = args.real(input::Range::closed(-90.0, 90.0)) * deg;
+            grasp_options.push_back(option);
+        } else if (option == "--dump-every") {
+            c.restart.dump_every = args.real(input::Range::positive());  // [s] of model time
+            grasp_options.push_back(option);
+        } else if (option == "--results") {
+            c.results = args.value();
+        } else if (option == "--quiet") {
+            c.quiet = true;
+        } else if (option == "--help" || option == "-h") {
+            c.help = true;
+        } else if (option == "--figures" || option == "--reference" || option == "--jobs") {
+            args.value();  // the study run reads it
+            study_options.push_back(option);
+        } else if (option == "--full") {
+            study_options.push_back(option);
+        } else {
+            args.unknown();
+        }
+    }
+    if (c.help) return c;
+    if (!grasp_options.empty() && c.mode != "--grasp")
+        throw InputError(fmt::format("command line: {} is an option of the --grasp side run{} (see --help)", grasp_options.front(),
+                                     c.mode.empty() ? "" : ", not of " + c.mode));
+    if (!c.mode.empty() && !study_options.empty())
+        throw InputError(fmt::format("command line: {} is an option of the study run, not of the {} side run (see --help)",
+                                     study_options.front(), c.mode));
+    return c;
+}
+
+int calibrate_side_run(const SideRunCommand& c) {
+    std::vector<int> limbs;
+    for (const std::string& limb : c.operands)
+        limbs.push_back(input::parse_integer<int>(limb, {"command line", 0, "--calibrate (limb)"}, {.min = 1, .max = 3}));
+    if (limbs.empty()) limbs = {1, 2, 3};
+    return calibrate(limbs);
+}
+
+// --shackle rotating|inverting [end time [mass scaling step [drive ramp [absolute|drive]]]]: one Step 4
+// run alone; `drive` damps the bird relative to the shackle's drive instead of absolutely.
+int shackle_side_run(const SideRunCommand& c) {
+    // Each operand read whole ("0.1x" is refused, not read as 0.1), each choice checked.
+    const std::vector<std::string>& op = c.operands;
+    if (op.size() > 5)
+        throw InputError(fmt::format("--shackle takes at most five operands (case, end time, mass scaling step, "
+                                     "drive ramp, damping frame), got {}: '{}'", op.size(), op[5]));
+    const std::vector<std::string> cases = {"rotating", "inverting"}, frames = {"absolute", "drive"};
+    const std::string which = input::check_choice(op.empty() ? "rotating" : op[0], {"command line", 0, "--shackle (case)"}, cases);
+    const bool rotating = which == "rotating";
+    const double end = op.size() > 1 ? input::parse_real(op[1], {"command line", 0, "--shackle (end time)"}, input::Range::positive())
+                                     : kShackleWindow;
+    const double scaling = op.size() > 2 ? input::parse_real(op[2], {"command line", 0, "--shackle (mass scaling step)"},
+                                                             input::Range::non_negative())
+                                         : kShackleMassScalingDt;
+    const double ramp = op.size() > 3 ? input::parse_real(op[3], {"command line", 0, "--shackle (drive ramp)"},
+                                                          input::Range::non_negative())
+                                      : 0.0;
+    const std::string frame =
+        input::check_choice(op.size() > 4 ? op[4] : "absolute", {"command line", 0, "--shackle (damping frame)"}, frames);
+    const std::string name = fmt::format("shackle-{}", rotating ? "rotating" : "inverting");
+    io::RunFolder out(check::side_run_folder("chicken_shackling", name, c.results), "chicken_shackling --shackle");
+    const chicken::Chicken bird = chicken::table_5_3_chicken();
+    const double density = chicken::density_for_mass(bird);
+    const ShackleInput input(bird);
+    const ShackleRun r = run_shackle(input, density, rotating, end, out.staging() / (name + ".pvd"), scaling, ramp, end, frame == "drive");
+    fmt::print("{}\n", r.summary.text());
+    write_shackle_dat(out.staging() / (name + ".dat"), r);
+    for (std::size_t k = 0; k < r.time.size(); ++k)
+        fmt::print("t {:.3f}  chicken {:.2f}  shackle {:.2f}  paw {:.2f}  rel {:.2f}  rel_paw {:.2f} mm  vm {:.2f} MPa\n", r.time[k],
+                   r.chicken[k] / mm, r.shackle[k] / mm, r.paw[k] / mm, r.relative[k] / mm, r.relative_paw[k] / mm, r.stress[k] / 1e6);
+    fmt::print("{}\n", shackle_peaks_text(r));
+    out.commit();
+    fmt::print("results: {}\n", out.path().string());
+    return 0;
+}
+
+// --grasp-verdicts [record ...]: the Step 3 reference entries judged on the records of --grasp runs
+// (default: the five side runs' grasp-case-<n>.dat); writes grasp-verdicts.md and the regenerated
+// table-5-4.md into a side-run folder of its own.
+int grasp_verdicts_side_run(const SideRunCommand& c) {
+    std::vector<std::filesystem::path> records(c.operands.begin(), c.operands.end());
+    if (records.empty())
+        for (int n = 1; n <= 5; ++n) {
+            const std::string name = fmt::format("grasp-case-{}", n);
+            const auto path = check::side_run_folder("chicken_shackling", name, {}) / (name + ".dat");
+            if (std::filesystem::exists(path)) records.push_back(path);
+        }
+    if (records.empty()) throw InputError("--grasp-verdicts: no grasp record found (run --grasp <case> first)");
+    std::vector<GraspMeasures> cases;
+    for (const auto& path : records) {
+        const std::string stem = path.stem().string();
+        const int number = stem.rfind("grasp-case-", 0) == 0 ? std::atoi(stem.c_str() + 11) : 0;
+        if (number < 1 || number > 5)
+            throw InputError(fmt::format("--grasp-verdicts: '{}' is not a grasp-case-<1..5>.dat record", path.string()));
+        cases.push_back(measure_grasp(read_grasp_dat(path, number, std::numeric_limits<double>::infinity())));
+        fmt::print("case {}: {} to {:.4f} s\n", number, path.string(), cases.back().end_time);
+    }
+    const std::string table =
+        grasp_verdict_table(grasp_findings(cases), check::load_reference(check::default_reference_path("chicken_shackling")));
+    fmt::print("{}", table);
+    io::RunFolder out(check::side_run_folder("chicken_shackling", "grasp-verdicts", c.results), "chicken_shackling --grasp-verdicts");
+    io::write_text_file(out.staging() / "grasp-verdicts.md", table);
+    io::write_text_file(out.staging() / "table-5-4.md", table_5_4_markdown(cases));
+    out.commit();
+    return 0;
+}
+
+// --grasp <case 1..5> [end time]: one Step 3 case of Table 5-4 alone (the study's --full runs all
+// five: README, Step 3).
+int grasp_side_run(const SideRunCommand& c) {
+    const std::vector<std::string>& op = c.operands;
+    if (op.size() > 2)
+        throw InputError(fmt::format("--grasp takes at most two operands (case, end time), got {}: '{}'", op.size(), op[2]));
+    const int number =
+        !op.empty() ? input::parse_integer<int>(op[0], {"command line", 0, "--grasp (Table 5-4 case)"}, {.min = 1, .max = 5}) : 4;
+    const double end =
+        op.size() > 1 ? input::parse_real(op[1], {"command line", 0, "--grasp (end time)"}, input::Range::positive()) : kGraspEnd;
+    const std::string name = fmt::format("grasp-case-{}", number);
+    // A sensitivity run gets a folder of its own (its files keep the case's names).
+    const std::string folder = name + c.variant.suffix();
+    io::RunFolder out(check::side_run_folder("chicken_shackling", folder, c.results), "chicken_shackling --grasp",
+                      c.restart.resume ? io::RunFolder::Leftovers::adopt : io::RunFolder::Leftovers::remove);
+    if (c.restart.resume && !out.adopted())
+        throw InputError(fmt::format("--resume: no killed run of {} to resume in '{}' (a killed run leaves a "
+                                     "'.run-*' folder there): run it without --resume",
+                                     name, out.path().string()));
+    const chicken::Chicken bird = chicken::table_5_1_chicken();
+    const double density = chicken::density_for_mass(bird);
+    const Mesh mesh = grasp_bird_mesh(bird);  // a GmshSession gives the caller's threads back
+    fmt::print("grasp bird: {} nodes, {} tet10, density {:.1f} kg/m3\n", mesh.node_count(), mesh.element_count(), density);
+    // A run that goes unstable is a result too (where and when the model fails): its record up to
+    // that cycle, its VTU series and its newest dumps are committed with the solver's diagnosis in
+    // <name>-failure.txt, and the program still exits non-zero.
+    GraspRun r;
+    try {
+        r = run_grasp(kTable54[number - 1], mesh, density, end, out.staging(), c.restart, c.variant);
+    } catch (const SolverError& e) {
+        io::write_text_file(out.staging() / (name + "-failure.txt"), std::string(e.what()) + "\n");
+        out.commit();
+        fmt::print("results up to the failure: {}\n", out.path().string());
+        throw;
+    }
+    fmt::print("{}\n", r.summary.text());
+    for (std::size_t k = 0; k < r.time.size(); k += 10)
+        fmt::print("t {:.3f}  body ({:.1f}, {:.1f}) mm  perch ({:.1f}, {:.1f}) mm  theta_b {:.2f} deg  E tip dy {:.2f} mm  "
+                   "E von Mises {:.3f} MPa  F {:.3g} N\n",
+                   r.time[k], r.body[k].x() / mm, r.body[k].y() / mm, r.perch[k].x() / mm, r.perch[k].y() / mm, r.theta_b[k] / deg,
+                   r.tip_y[4][k] / mm, r.stress[4][k] / 1e6, r.finger_force[k]);
+    fmt::print("wall {:.1f} s\n", r.seconds);
+    out.commit();
+    fmt::print("results: {}\n", out.path().string());
+    return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-    // --calibrate [limb ...]: re-derive the limb widths (all three limbs, or the ones listed).
-    for (int i = 1; i < argc; ++i)
-        if (std::strcmp(argv[i], "--calibrate") == 0)
-            return run_program("chicken_shackling --calibrate", [&] {
-                std::vector<int> limbs;
-                for (int k = i + 1; k < argc; ++k)
-                    limbs.push_back(input::parse_integer<int>(argv[k], {"command line", 0, "--calibrate (limb)"}, {.min = 1, .max = 3}));
-                if (limbs.empty()) limbs = {1, 2, 3};
-                return calibrate(limbs);
-            });
-    // The side runs below write into a folder of their own under the study's results folder (never
-    // the current directory; check/side_run.hpp), as one run's set (io::RunFolder). Their operands are
-    // the arguments after the option up to the next option (--results DIR may follow).
-    const std::span<char* const> args(argv, static_cast<std::size_t>(argc));
-    auto operands = [&](int i) {
-        std::vector<std::string> v;
-        for (int k = i + 1; k < argc && std::strncmp(argv[k], "--", 2) != 0; ++k) v.push_back(argv[k]);
-        return v;
-    };
-    // --shackle rotating|inverting [end time [mass scaling step [drive ramp [absolute|drive]]]]: one Step 4
-    // run alone; `drive` damps the bird relative to the shackle's drive instead of absolutely.
-    for (int i = 1; i < argc; ++i)
-        if (std::strcmp(argv[i], "--shackle") == 0) {
-            return run_program("chicken_shackling --shackle", [&] {
-                // Each operand read whole ("0.1x" is refused, not read as 0.1), each choice checked.
-                const std::vector<std::string> op = operands(i);
-                if (op.size() > 5)
-                    throw InputError(fmt::format("--shackle takes at most five operands (case, end time, mass scaling step, "
-                                                 "drive ramp, damping frame), got {}: '{}'", op.size(), op[5]));
-                const std::vector<std::string> cases = {"rotating", "inverting"}, frames = {"absolute", "drive"};
-                const std::string which = input::check_choice(op.empty() ? "rotating" : op[0], {"command line", 0, "--shackle (case)"}, cases);
-                const bool rotating = which == "rotating";
-                const double end = op.size() > 1 ? input::parse_real(op[1], {"command line", 0, "--shackle (end time)"}, input::Range::positive())
-                                                 : kShackleWindow;
-                const double scaling = op.size() > 2 ? input::parse_real(op[2], {"command line", 0, "--shackle (mass scaling step)"},
-                                                                         input::Range::non_negative())
-                                                     : kShackleMassScalingDt;
-                const double ramp = op.size() > 3 ? input::parse_real(op[3], {"command line", 0, "--shackle (drive ramp)"},
-                                                                      input::Range::non_negative())
-                                                  : 0.0;
-                const std::string frame =
-                    input::check_choice(op.size() > 4 ? op[4] : "absolute", {"command line", 0, "--shackle (damping frame)"}, frames);
-                const std::string name = fmt::format("shackle-{}", rotating ? "rotating" : "inverting");
-                io::RunFolder out(check::side_run_folder("chicken_shackling", name, args), "chicken_shackling --shackle");
-                const chicken::Chicken bird = chicken::table_5_3_chicken();
-                const double density = chicken::density_for_mass(bird);
-                const ShackleInput input(bird);
-                const ShackleRun r = run_shackle(input, density, rotating, end, out.staging() / (name + ".pvd"), scaling, ramp, end, frame == "drive");
-                fmt::print("{}\n", r.summary.text());
-                write_shackle_dat(out.staging() / (name + ".dat"), r);
-                for (std::size_t k = 0; k < r.time.size(); ++k)
-                    fmt::print("t {:.3f}  chicken {:.2f}  shackle {:.2f}  paw {:.2f}  rel {:.2f}  rel_paw {:.2f} mm  vm {:.2f} MPa\n", r.time[k],
-                               r.chicken[k] / mm, r.shackle[k] / mm, r.paw[k] / mm, r.relative[k] / mm, r.relative_paw[k] / mm, r.stress[k] / 1e6);
-                fmt::print("{}\n", shackle_peaks_text(r));
-                out.commit();
-                fmt::print("results: {}\n", out.path().string());
-                return 0;
-            });
-        }
-    // --grasp-verdicts [record ...]: the Step 3 reference entries judged on the records of --grasp runs
-    // (default: the five side runs' grasp-case-<n>.dat); writes grasp-verdicts.md and the regenerated
-    // table-5-4.md into a side-run folder of its own.
-    for (int i = 1; i < argc; ++i)
-        if (std::strcmp(argv[i], "--grasp-verdicts") == 0)
-            return run_program("chicken_shackling --grasp-verdicts", [&] {
-                std::vector<std::filesystem::path> records;
-                for (const std::string& r : operands(i)) records.emplace_back(r);
-                if (records.empty())
-                    for (int n = 1; n <= 5; ++n) {
-                        const std::string name = fmt::format("grasp-case-{}", n);
-                        const auto path = check::side_run_folder("chicken_shackling", name, {}) / (name + ".dat");
-                        if (std::filesystem::exists(path)) records.push_back(path);
-                    }
-                if (records.empty()) throw InputError("--grasp-verdicts: no grasp record found (run --grasp <case> first)");
-                std::vector<GraspMeasures> cases;
-                for (const auto& path : records) {
-                    const std::string stem = path.stem().string();
-                    const int number = stem.rfind("grasp-case-", 0) == 0 ? std::atoi(stem.c_str() + 11) : 0;
-                    if (number < 1 || number > 5)
-                        throw InputError(fmt::format("--grasp-verdicts: '{}' is not a grasp-case-<1..5>.dat record", path.string()));
-                    cases.push_back(measure_grasp(read_grasp_dat(path, number, std::numeric_limits<double>::infinity())));
-                    fmt::print("case {}: {} to {:.4f} s\n", number, path.string(), cases.back().end_time);
-                }
-                const std::string table =
-                    grasp_verdict_table(grasp_findings(cases), check::load_reference(check::default_reference_path("chicken_shackling")));
-                fmt::print("{}", table);
-                io::RunFolder out(check::side_run_folder("chicken_shackling", "grasp-verdicts", args), "chicken_shackling --grasp-verdicts");
-                io::write_text_file(out.staging() / "grasp-verdicts.md", table);
-                io::write_text_file(out.staging() / "table-5-4.md", table_5_4_markdown(cases));
-                out.commit();
-                return 0;
-            });
-    // The single number after option k, read whole within `range` (InputError naming the option).
-    auto number_after = [&](int k, input::Range range) {
-        const std::vector<std::string> v = operands(k);
-        const input::Where at{"command line", 0, argv[k]};
-        if (v.size() != 1) input::fail(at, fmt::format("takes one number, got {}", v.size()));
-        return input::parse_real(v[0], at, range);
-    };
-    // --grasp <case 1..5> [end time]: one Step 3 case of Table 5-4 alone (the study's --full runs all
-    // five: README, Step 3).
-    for (int i = 1; i < argc; ++i)
-        if (std::strcmp(argv[i], "--grasp") == 0) {
-            return run_program("chicken_shackling --grasp", [&] {
-                const std::vector<std::string> op = operands(i);
-                if (op.size() > 2)
-                    throw InputError(fmt::format("--grasp takes at most two operands (case, end time), got {}: '{}'", op.size(), op[2]));
-                const int number = !op.empty() ? input::parse_integer<int>(op[0], {"command line", 0, "--grasp (Table 5-4 case)"},
-                                                                           {.min = 1, .max = 5})
-                                               : 4;
-                const double end = op.size() > 1 ? input::parse_real(op[1], {"command line", 0, "--grasp (end time)"}, input::Range::positive())
-                                                 : kGraspEnd;
-                GraspRestart restart;
-                GraspVariant variant;
-                for (int k = 1; k < argc; ++k) {
-                    if (std::strcmp(argv[k], "--resume") == 0) restart.resume = true;
-                    if (std::strcmp(argv[k], "--friction-decay") == 0)  // c_d [s/m]
-                        variant.friction_decay = number_after(k, input::Range::non_negative());
-                    if (std::strcmp(argv[k], "--drum-phase") == 0)  // [deg]
-                        variant.drum_phase = number_after(k, input::Range::closed(-90.0, 90.0)) * deg;
-                    if (std::strcmp(argv[k], "--dump-every") == 0)  // [s]
-                        restart.dump_every = number_after(k, input::Range::positive());
-                }
-                const std::string name = fmt::format("grasp-case-{}", number);
-                // A sensitivity run gets a folder of its own (its files keep the case's names).
-                const std::string folder = name + variant.suffix();
-                io::RunFolder out(check::side_run_folder("chicken_shackling", folder, args), "chicken_shackling --grasp",
-                                  restart.resume ? io::RunFolder::Leftovers::adopt : io::RunFolder::Leftovers::remove);
-                if (restart.resume && !out.adopted())
-                    throw InputError(fmt::format("--resume: no killed run of {} to resume in '{}' (a killed run leaves a "
-                                                 "'.run-*' folder there): run it without --resume",
-                                                 name, out.path().string()));
-                const chicken::Chicken bird = chicken::table_5_1_chicken();
-                const double density = chicken::density_for_mass(bird);
-                const Mesh mesh = grasp_bird_mesh(bird);  // a GmshSession gives the caller's threads back
-                fmt::print("grasp bird: {} nodes, {} tet10, density {:.1f} kg/m3\n", mesh.node_count(), mesh.element_count(), density);
-                // A run that goes unstable is a result too (where and when the model fails): its record
-                // up to that cycle, its VTU series and its newest dumps are committed with the solver's
-                // diagnosis in <name>-failure.txt, and the program still exits non-zero.
-                GraspRun r;
-                try {
-                    r = run_grasp(kTable54[number - 1], mesh, density, end, out.staging(), restart, variant);
-                } catch (const SolverError& e) {
-                    io::write_text_file(out.staging() / (name + "-failure.txt"), std::string(e.what()) + "\n");
-                    out.commit();
-                    fmt::print("results up to the failure: {}\n", out.path().string());
-                    throw;
-                }
-                fmt::print("{}\n", r.summary.text());
-                for (std::size_t k = 0; k < r.time.size(); k += 10)
-                    fmt::print("t {:.3f}  body ({:.1f}, {:.1f}) mm  perch ({:.1f}, {:.1f}) mm  theta_b {:.2f} deg  E tip dy {:.2f} mm  "
-                               "E von Mises {:.3f} MPa  F {:.3g} N\n",
-                               r.time[k], r.body[k].x() / mm, r.body[k].y() / mm, r.perch[k].x() / mm, r.perch[k].y() / mm,
-                               r.theta_b[k] / deg, r.tip_y[4][k] / mm, r.stress[4][k] / 1e6, r.finger_force[k]);
-                fmt::print("wall {:.1f} s\n", r.seconds);
-                out.commit();
-                fmt::print("results: {}\n", out.path().string());
-                return 0;
-            });
-        }
-    return check::run_study("chicken_shackling", argc, argv, run);
+    // The side runs' command line is read first (strictly); without a side run the study reads its own.
+    SideRunCommand c;
+    if (const int status = run_program("chicken_shackling", [&] {
+            c = parse_side_run(argc, argv);
+            return 0;
+        });
+        status != 0)
+        return status;
+    if (c.help) {
+        check::print_study_usage("chicken_shackling");
+        std::cout << kSideRunUsage;
+        return 0;
+    }
+    if (c.mode.empty()) return check::run_study("chicken_shackling", argc, argv, run);
+    if (c.quiet) Progress::set_quiet(true);
+    const std::string program = "chicken_shackling " + c.mode;
+    return run_program(program.c_str(), [&] {
+        if (c.mode == "--calibrate") return calibrate_side_run(c);
+        if (c.mode == "--shackle") return shackle_side_run(c);
+        if (c.mode == "--grasp-verdicts") return grasp_verdicts_side_run(c);
+        return grasp_side_run(c);
+    });
 }

@@ -5,10 +5,8 @@
 
 #include <filesystem>
 #include <string>
-#include <vector>
 
 #include "check/side_run.hpp"
-#include "core/error.hpp"
 
 namespace fs = std::filesystem;
 using fem::check::side_run_folder;
@@ -30,20 +28,12 @@ struct InScratchDirectory {
     }
 };
 
-std::vector<char*> arguments(std::vector<std::string>& words) {
-    std::vector<char*> args;
-    for (auto& w : words) args.push_back(w.data());
-    return args;
-}
-
 }  // namespace
 
 TEST(SideRunFolder, IsUnderTheStudysResultsFolderWhateverTheCurrentDirectory) {
-    std::vector<std::string> words = {"chicken_shackling", "--grasp", "4", "0.12"};
-    const auto args = arguments(words);
-    const fs::path from_here = side_run_folder("chicken_shackling", "grasp-case-4", args);
+    const fs::path from_here = side_run_folder("chicken_shackling", "grasp-case-4", {});
     InScratchDirectory in;
-    const fs::path from_scratch = side_run_folder("chicken_shackling", "grasp-case-4", args);
+    const fs::path from_scratch = side_run_folder("chicken_shackling", "grasp-case-4", {});
     EXPECT_TRUE(from_scratch.is_absolute());
     EXPECT_EQ(from_scratch, from_here);  // not relative to the current directory
     EXPECT_EQ(from_scratch.filename(), "grasp-case-4");
@@ -56,10 +46,6 @@ TEST(SideRunFolder, IsUnderTheStudysResultsFolderWhateverTheCurrentDirectory) {
 
 TEST(SideRunFolder, ResultsOptionChoosesTheFolderRelativeToTheCurrentDirectory) {
     InScratchDirectory in;
-    std::vector<std::string> words = {"chicken_shackling", "--shackle", "rotating", "--results", "out/rot"};
-    EXPECT_EQ(side_run_folder("chicken_shackling", "shackle-rotating", arguments(words)), fs::current_path() / "out" / "rot");
-    std::vector<std::string> absolute = {"chicken_shackling", "--results", "/tmp/somewhere", "--grasp", "2"};
-    EXPECT_EQ(side_run_folder("chicken_shackling", "grasp-case-2", arguments(absolute)), fs::path("/tmp/somewhere"));
-    std::vector<std::string> missing = {"chicken_shackling", "--grasp", "4", "--results"};
-    EXPECT_THROW(side_run_folder("chicken_shackling", "grasp-case-4", arguments(missing)), fem::InputError);
+    EXPECT_EQ(side_run_folder("chicken_shackling", "shackle-rotating", "out/rot"), fs::current_path() / "out" / "rot");
+    EXPECT_EQ(side_run_folder("chicken_shackling", "grasp-case-2", "/tmp/somewhere"), fs::path("/tmp/somewhere"));
 }

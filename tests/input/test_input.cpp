@@ -197,6 +197,19 @@ TEST(Arguments, WholeNumbersAndUnknownOptions) {
     EXPECT_ERROR(run({"--scale", "nan"}), "--scale: must be a finite number > 0, got nan");
     EXPECT_ERROR(run({"--mdoes", "3"}), "unknown option '--mdoes' (did you mean '--modes'?)");
     EXPECT_ERROR(run({"a.toml", "b.toml"}), "unexpected argument 'b.toml'");
+
+    // An option with a variable number of operands: those up to the next option.
+    std::vector<std::string> words = {"prog", "--shackle", "rotating", "-0.5", "--results", "out", "--grasp"};
+    std::vector<char*> argv;
+    for (auto& w : words) argv.push_back(w.data());
+    Arguments args(static_cast<int>(argv.size()), argv.data(), {"--shackle", "--results", "--grasp"});
+    ASSERT_TRUE(args.next() && args.is("--shackle"));
+    EXPECT_EQ(args.operands(), (std::vector<std::string>{"rotating", "-0.5"}));
+    ASSERT_TRUE(args.next() && args.is("--results"));
+    EXPECT_EQ(args.value(), "out");
+    ASSERT_TRUE(args.next() && args.is("--grasp"));
+    EXPECT_TRUE(args.operands().empty());
+    EXPECT_FALSE(args.next());
 }
 
 }  // namespace
