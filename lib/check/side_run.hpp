@@ -13,10 +13,44 @@
 // own files in its manifest and leaves every other file and folder alone, so neither run removes
 // the other's files, and a side run never overwrites a file the study run judged (e.g. the study's
 // shackle-rotating.dat).
+//
+// The command line of a side run is read whole by read_side_run (strictly, as every command line:
+// input/arguments.hpp): one mode with its operands, --results DIR, --quiet, --help, and options of
+// the study's own modes; an option of the study run (--full, --jobs, ...) beside a side run, two
+// side runs at once or an unknown option is an input error naming it.
+//
+//   const check::SideRun side = check::read_side_run(argc, argv, {"--screw-search"});
+//   if (side.help) { check::print_study_usage("portal_frame_modes"); std::cout << side-run usage; }
+//   else if (side.mode.empty()) return check::run_study(...);   // the study run reads its own options
+//   else ... side_run_folder("portal_frame_modes", "screw-search", side.results) ...
 #include <filesystem>
+#include <functional>
+#include <string>
 #include <string_view>
+#include <vector>
+
+namespace fem::input {
+class Arguments;
+}
 
 namespace fem::check {
+
+/// A side run's command line.
+struct SideRun {
+    std::string mode;                   // the mode's option (e.g. "--grasp"); empty: the study run
+    std::vector<std::string> operands;  // its operands (the arguments after it up to the next option)
+    std::filesystem::path results;      // --results DIR; empty: side_run_folder's default
+    std::vector<std::string> options;   // the study's own side-run options given (e.g. "--resume")
+    bool help = false, quiet = false;
+};
+
+/// Reads the command line. `modes`: the study's side runs; `options`: the options of its side runs
+/// beyond them, each read by `read_option` (given the Arguments at that option, to take its value);
+/// the caller says which mode an option belongs to. Throws InputError as above; with --help the rest is
+/// not judged.
+SideRun read_side_run(int argc, char** argv, const std::vector<std::string_view>& modes,
+                      const std::vector<std::string_view>& options = {},
+                      const std::function<void(input::Arguments&)>& read_option = {});
 
 /// The absolute folder of side run `run` of `study`: `results_option`, the DIR of the command line's
 /// `--results DIR` (relative to the current directory, as a user types it), when it is not empty,

@@ -1598,67 +1598,27 @@ constexpr const char* kSideRunUsage =
     "  --grasp-verdicts [record ...] Step 3's checks judged on --grasp records (default: the five side runs')\n"
     "  --quiet                       no progress lines on stderr\n";
 
-/// A side run's command line, read whole: every option known, each value checked, an option that
-/// belongs to another mode refused by name (a typo is an input error, never a 40-minute run of the
-/// plain case).
-struct SideRunCommand {
-    std::string mode;                   // "--calibrate", "--shackle", "--grasp", "--grasp-verdicts"; empty: the study run
-    std::vector<std::string> operands;  // the mode's operands (up to the next option)
-    std::filesystem::path results;      // --results DIR (empty: the side run's default folder)
+/// A side run's command line (check::read_side_run) with the --grasp options read.
+struct SideRunCommand : check::SideRun {
     GraspRestart restart;
     GraspVariant variant;
-    bool help = false, quiet = false;
 };
 
+/// Read whole: every option known, each value checked, an option of another mode refused by name (a
+/// typo is an input error, never a 20-minute run of the plain case).
 SideRunCommand parse_side_run(int argc, char** argv) {
-    const std::vector<std::string_view> modes = {"--calibrate", "--shackle", "--grasp", "--grasp-verdicts"};
-    std::vector<std::string_view> known(modes);
-    known.insert(known.end(), {"--resume", "--friction-decay", "--drum-phase", "--dump-every"});
-    known.insert(known.end(), check::study_options().begin(), check::study_options().end());
-    input::Arguments args(argc, argv, known);
     SideRunCommand c;
-    std::vector<std::string> grasp_options, study_options;
-    while (args.next()) {
-        const std::string option = args.current();
-        if (std::ranges::find(modes, option) != modes.end()) {
-            if (!c.mode.empty())
-                throw InputError(fmt::format("command line: one side run at a time, got {} and {} (see --help)", c.mode, option));
-            c.mode = option;
-            c.operands = args.operands();
-        } else if (option == "--resume") {
-            c.restart.resume = true;
-            grasp_options.push_back(option);
-        } else if (option == "--friction-decay") {
-            c.variant.friction_decay = args.real(input::Range::non_negative());  // c_d [s/m]
-            grasp_options.push_back(option);
-        } else if (option == "--drum-phase") {
-            c.variant.drum_phase = args.real(input::Range::closed(-90.0, 90.0)) * deg;
-            grasp_options.push_back(option);
-        } else if (option == "--dump-every") {
-            c.restart.dump_every = args.real(input::Range::positive());  // [s] of model time
-            grasp_options.push_back(option);
-        } else if (option == "--results") {
-            c.results = args.value();
-        } else if (option == "--quiet") {
-            c.quiet = true;
-        } else if (option == "--help" || option == "-h") {
-            c.help = true;
-        } else if (option == "--figures" || option == "--reference" || option == "--jobs") {
-            args.value();  // the study run reads it
-            study_options.push_back(option);
-        } else if (option == "--full") {
-            study_options.push_back(option);
-        } else {
-            args.unknown();
-        }
-    }
-    if (c.help) return c;
-    if (!grasp_options.empty() && c.mode != "--grasp")
-        throw InputError(fmt::format("command line: {} is an option of the --grasp side run{} (see --help)", grasp_options.front(),
+    static_cast<check::SideRun&>(c) = check::read_side_run(
+        argc, argv, {"--calibrate", "--shackle", "--grasp", "--grasp-verdicts"}, {"--resume", "--friction-decay", "--drum-phase", "--dump-every"},
+        [&](input::Arguments& args) {
+            if (args.is("--resume")) c.restart.resume = true;
+            else if (args.is("--friction-decay")) c.variant.friction_decay = args.real(input::Range::non_negative());  // c_d [s/m]
+            else if (args.is("--drum-phase")) c.variant.drum_phase = args.real(input::Range::closed(-90.0, 90.0)) * deg;
+            else if (args.is("--dump-every")) c.restart.dump_every = args.real(input::Range::positive());  // [s] of model time
+        });
+    if (!c.help && !c.options.empty() && c.mode != "--grasp")  // all four are --grasp's
+        throw InputError(fmt::format("command line: {} is an option of the --grasp side run{} (see --help)", c.options.front(),
                                      c.mode.empty() ? "" : ", not of " + c.mode));
-    if (!c.mode.empty() && !study_options.empty())
-        throw InputError(fmt::format("command line: {} is an option of the study run, not of the {} side run (see --help)",
-                                     study_options.front(), c.mode));
     return c;
 }
 

@@ -29,7 +29,9 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fmt/format.h>
+#include <iostream>
 #include <map>
 #include <sstream>
 #include <string>
@@ -37,8 +39,11 @@
 #include <vector>
 
 #include "assembly/model.hpp"
+#include "check/side_run.hpp"
 #include "check/study.hpp"
+#include "core/error.hpp"
 #include "core/program.hpp"
+#include "core/progress.hpp"
 #include "core/units.hpp"
 #include "element/shell_mitc4.hpp"
 #include "io/atomic_file.hpp"
@@ -433,12 +438,40 @@ int screw_search(const std::filesystem::path& out_dir) {
 }  // namespace
 
 int main(int argc, char** argv) {
-    if (argc >= 2 && std::string(argv[1]) == "--calibrate") return run_program("portal_frame_modes --calibrate", [] { return calibrate(); });
-    if (argc >= 2 && std::string(argv[1]) == "--sensitivity") return run_program("portal_frame_modes --sensitivity", [] { return sensitivity(); });
-    if (argc >= 2 && std::string(argv[1]) == "--screw-search")
-        return run_program("portal_frame_modes --screw-search", [&] {
-            return screw_search(argc >= 3 ? argv[2] : "build/results/portal_frame_modes");
+    // Side runs (README), read strictly (check/side_run.hpp). --screw-search writes screw-search.csv
+    // into its folder: DIR when given, else build/results/portal_frame_modes/screw-search/ (or
+    // --results DIR), whatever the current directory.
+    check::SideRun side;
+    std::filesystem::path screw_folder;
+    if (const int status = run_program("portal_frame_modes", [&] {
+            side = check::read_side_run(argc, argv, {"--calibrate", "--sensitivity", "--screw-search"});
+            if (side.help) return 0;
+            const std::size_t most = side.mode == "--screw-search" ? 1 : 0;
+            if (side.operands.size() > most)
+                throw InputError(fmt::format("{} takes {}, got '{}'", side.mode, most ? "at most one operand (DIR)" : "no operand",
+                                             side.operands.back()));
+            if (!side.operands.empty() && !side.results.empty())
+                throw InputError("--screw-search: give its folder once, as DIR or as --results DIR");
+            screw_folder = side.operands.empty() ? check::side_run_folder("portal_frame_modes", "screw-search", side.results)
+                                                 : std::filesystem::absolute(side.operands.front());
+            return 0;
         });
+        status != 0)
+        return status;
+    if (side.help) {
+        check::print_study_usage("portal_frame_modes");
+        std::cout << "side runs (one at a time):\n"
+                     "  --calibrate          repeat the calibration of the frame (about 45 s)\n"
+                     "  --sensitivity        mesh refinement and screw-coupling variants (about 1 min)\n"
+                     "  --screw-search [DIR] every choice of 1 and 2 missing screws, three screw models (123 modal\n"
+                     "                       solves); DIR/screw-search.csv (default build/results/portal_frame_modes/screw-search)\n";
+        return 0;
+    }
+    if (side.quiet) Progress::set_quiet(true);
+    if (side.mode == "--calibrate") return run_program("portal_frame_modes --calibrate", [] { return calibrate(); });
+    if (side.mode == "--sensitivity") return run_program("portal_frame_modes --sensitivity", [] { return sensitivity(); });
+    if (side.mode == "--screw-search")
+        return run_program("portal_frame_modes --screw-search", [&] { return screw_search(screw_folder); });
     return check::run_study("portal_frame_modes", argc, argv, [](check::Study& study) {
         const auto& out = study.results_dir();
         const portal::Geometry g = reconstructed_geometry();

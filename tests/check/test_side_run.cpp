@@ -5,8 +5,11 @@
 
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "check/side_run.hpp"
+#include "core/error.hpp"
+#include "input/arguments.hpp"
 
 namespace fs = std::filesystem;
 using fem::check::side_run_folder;
@@ -48,4 +51,50 @@ TEST(SideRunFolder, ResultsOptionChoosesTheFolderRelativeToTheCurrentDirectory) 
     InScratchDirectory in;
     EXPECT_EQ(side_run_folder("chicken_shackling", "shackle-rotating", "out/rot"), fs::current_path() / "out" / "rot");
     EXPECT_EQ(side_run_folder("chicken_shackling", "grasp-case-2", "/tmp/somewhere"), fs::path("/tmp/somewhere"));
+}
+
+namespace {
+
+fem::check::SideRun read(std::vector<std::string> words, double* dump_every = nullptr) {
+    words.insert(words.begin(), "study");
+    std::vector<char*> argv;
+    for (auto& w : words) argv.push_back(w.data());
+    return fem::check::read_side_run(static_cast<int>(argv.size()), argv.data(), {"--grasp", "--shackle"}, {"--dump-every", "--resume"},
+                                     [&](fem::input::Arguments& args) {
+                                         if (args.is("--dump-every")) *dump_every = args.real(fem::input::Range::positive());
+                                     });
+}
+
+std::string error_of(std::vector<std::string> words) {
+    double d = 0;
+    try {
+        read(std::move(words), &d);
+    } catch (const fem::InputError& e) {
+        return e.what();
+    }
+    return "(accepted)";
+}
+
+}  // namespace
+
+TEST(SideRunCommandLine, ReadsTheModeItsOperandsAndOptionsStrictly) {
+    double dump_every = 0;
+    const auto side = read({"--grasp", "4", "-0.5", "--dump-every", "0.01", "--results", "out", "--resume", "--quiet"}, &dump_every);
+    EXPECT_EQ(side.mode, "--grasp");
+    EXPECT_EQ(side.operands, (std::vector<std::string>{"4", "-0.5"}));
+    EXPECT_EQ(side.options, (std::vector<std::string>{"--dump-every", "--resume"}));
+    EXPECT_EQ(side.results, fs::path("out"));
+    EXPECT_TRUE(side.quiet);
+    EXPECT_EQ(dump_every, 0.01);
+    // The study run: no mode; its own options pass through (Study reads them).
+    const auto study = read({"--full", "--jobs", "2", "--figures", "f"});
+    EXPECT_TRUE(study.mode.empty());
+    EXPECT_TRUE(read({"--grasp", "--full", "--help"}).help);  // --help: the rest is not judged
+    EXPECT_NE(error_of({"--grasp", "4", "--dump-evry", "1"}).find("unknown option '--dump-evry' (did you mean '--dump-every'?)"),
+              std::string::npos);
+    EXPECT_NE(error_of({"--grasp", "--shackle"}).find("one side run at a time, got --grasp and --shackle"), std::string::npos);
+    EXPECT_NE(error_of({"--shackle", "--jobs", "2"}).find("--jobs is an option of the study run, not of the --shackle side run"),
+              std::string::npos);
+    EXPECT_NE(error_of({"--grasp", "--dump-every", "0"}).find("--dump-every: must be a finite number > 0, got 0"), std::string::npos);
+    EXPECT_NE(error_of({"--grasp", "--results"}).find("option '--results' needs a value"), std::string::npos);
 }
