@@ -4,19 +4,24 @@
 #include <string>
 
 #include "check/report.hpp"
-#include "core/error.hpp"
 #include "core/program.hpp"
+#include "input/arguments.hpp"
 
 int main(int argc, char** argv) {
     return fem::run_program("fem-report", [&]() {
         fem::check::ReportInputs in{"reference", "build/results", "figures"};
-        for (int i = 1; i < argc; ++i) {
-            const std::string arg = argv[i];
-            if (i + 1 >= argc) throw fem::InputError("option '" + arg + "' needs a value (see --help)");
-            if (arg == "--reference") in.reference_dir = argv[++i];
-            else if (arg == "--results") in.results_dir = argv[++i];
-            else if (arg == "--figures") in.figures_dir = argv[++i];
-            else throw fem::InputError("unknown option '" + arg + "'; use --reference DIR --results DIR --figures DIR");
+        fem::input::Arguments args(argc, argv, {"--reference", "--results", "--figures", "--help", "-h"});
+        while (args.next()) {
+            if (args.is("--reference")) in.reference_dir = args.value();
+            else if (args.is("--results")) in.results_dir = args.value();
+            else if (args.is("--figures")) in.figures_dir = args.value();
+            else if (args.is("--help") || args.is("-h")) {
+                std::cout << "usage: fem-report [--reference DIR] [--results DIR] [--figures DIR]\n"
+                             "  Writes DIR/REPORT.md and REPORT.html (--figures, default figures) from every study's\n"
+                             "  checks.json and runs.json under --results (default build/results) and the reference\n"
+                             "  files under --reference (default reference).\n";
+                return 0;
+            } else args.unknown();
         }
         const int failed = fem::check::write_report(in);
         std::cout << "report: " << (in.figures_dir / "REPORT.md").string() << " and REPORT.html ("
