@@ -1,7 +1,7 @@
 #pragma once
 // Where this build tree's project sources, programs and results are: the project folder (reference
-// files, meshes, case files, test corpora), build/bin and build/results. All are absolute paths fixed when the build is configured
-// (lib/check/CMakeLists.txt). They are compiled into build_paths.cpp alone, so that no other
+// files, meshes, case files, test corpora), build/bin and build/results. All are absolute paths
+// fixed when the build is configured (lib/check/CMakeLists.txt). They are compiled into build_paths.cpp alone, so that no other
 // translation unit carries a clone's own path: ccache then reuses every other object in a clone
 // made under another path (CMakeLists.txt, fem_unity).
 #include <filesystem>

@@ -46,8 +46,8 @@ struct SideRun {
 
 /// Reads the command line. `modes`: the study's side runs; `options`: the options of its side runs
 /// beyond them, each read by `read_option` (given the Arguments at that option, to take its value);
-/// the caller says which mode an option belongs to. Throws InputError as above; with --help the rest is
-/// not judged.
+/// the caller says which mode an option belongs to. Throws InputError as above (with --help, only
+/// for an unknown option or a bad value: which options go together is not judged).
 SideRun read_side_run(int argc, char** argv, const std::vector<std::string_view>& modes,
                       const std::vector<std::string_view>& options = {},
                       const std::function<void(input::Arguments&)>& read_option = {});
