@@ -19,10 +19,9 @@
 // the study's own modes; an option of the study run (--full, --jobs, ...) beside a side run, two
 // side runs at once or an unknown option is an input error naming it.
 //
-//   const check::SideRun side = check::read_side_run(argc, argv, {"--screw-search"});
-//   if (side.help) { check::print_study_usage("portal_frame_modes"); std::cout << side-run usage; }
-//   else if (side.mode.empty()) return check::run_study(...);   // the study run reads its own options
-//   else ... side_run_folder("portal_frame_modes", "screw-search", side.results) ...
+//   const check::SideRun side = check::read_side_run(argc, argv, "portal_frame_modes", usage, {"--screw-search"});
+//   if (side.mode.empty()) return check::run_study(...);   // the study run reads its own options
+//   ... side_run_folder("portal_frame_modes", "screw-search", side.results) ...
 #include <filesystem>
 #include <functional>
 #include <string>
@@ -41,15 +40,15 @@ struct SideRun {
     std::vector<std::string> operands;  // its operands (the arguments after it up to the next option)
     std::filesystem::path results;      // --results DIR; empty: side_run_folder's default
     std::vector<std::string> options;   // the study's own side-run options given (e.g. "--resume")
-    bool help = false, quiet = false;
 };
 
-/// Reads the command line. `modes`: the study's side runs; `options`: the options of its side runs
-/// beyond them, each read by `read_option` (given the Arguments at that option, to take its value);
-/// the caller says which mode an option belongs to. Throws InputError as above (with --help, only
-/// for an unknown option or a bad value: which options go together is not judged).
-SideRun read_side_run(int argc, char** argv, const std::vector<std::string_view>& modes,
-                      const std::vector<std::string_view>& options = {},
+/// Reads the command line of study program `study`. `modes`: its side runs; `options`: the options of
+/// its side runs beyond them, each read by `read_option` (given the Arguments at that option, to take
+/// its value); the caller says which mode an option belongs to. Throws InputError as above. --help
+/// prints the study's usage and `usage` (its side runs) and exits 0 (an unknown option or a bad value
+/// before it is still an error); --quiet with a side run turns its progress lines off (Progress).
+SideRun read_side_run(int argc, char** argv, std::string_view study, std::string_view usage,
+                      const std::vector<std::string_view>& modes, const std::vector<std::string_view>& options = {},
                       const std::function<void(input::Arguments&)>& read_option = {});
 
 /// The absolute folder of side run `run` of `study`: `results_option`, the DIR of the command line's

@@ -84,7 +84,6 @@
 #include "contact/surface.hpp"
 #include "core/error.hpp"
 #include "core/program.hpp"
-#include "core/progress.hpp"
 #include "core/units.hpp"
 #include "explicit/offset_tie.hpp"
 #include "explicit/parallel.hpp"
@@ -1609,14 +1608,15 @@ struct SideRunCommand : check::SideRun {
 SideRunCommand parse_side_run(int argc, char** argv) {
     SideRunCommand c;
     static_cast<check::SideRun&>(c) = check::read_side_run(
-        argc, argv, {"--calibrate", "--shackle", "--grasp", "--grasp-verdicts"}, {"--resume", "--friction-decay", "--drum-phase", "--dump-every"},
+        argc, argv, "chicken_shackling", kSideRunUsage, {"--calibrate", "--shackle", "--grasp", "--grasp-verdicts"},
+        {"--resume", "--friction-decay", "--drum-phase", "--dump-every"},
         [&](input::Arguments& args) {
             if (args.is("--resume")) c.restart.resume = true;
             else if (args.is("--friction-decay")) c.variant.friction_decay = args.real(input::Range::non_negative());  // c_d [s/m]
             else if (args.is("--drum-phase")) c.variant.drum_phase = args.real(input::Range::closed(-90.0, 90.0)) * deg;
             else if (args.is("--dump-every")) c.restart.dump_every = args.real(input::Range::positive());  // [s] of model time
         });
-    if (!c.help && !c.options.empty() && c.mode != "--grasp")  // all four are --grasp's
+    if (!c.options.empty() && c.mode != "--grasp")  // all four are --grasp's
         throw InputError(fmt::format("command line: {} is an option of the --grasp side run{} (see --help)", c.options.front(),
                                      c.mode.empty() ? "" : ", not of " + c.mode));
     return c;
@@ -1757,13 +1757,7 @@ int main(int argc, char** argv) {
         });
         status != 0)
         return status;
-    if (c.help) {
-        check::print_study_usage("chicken_shackling");
-        std::cout << kSideRunUsage;
-        return 0;
-    }
     if (c.mode.empty()) return check::run_study("chicken_shackling", argc, argv, run);
-    if (c.quiet) Progress::set_quiet(true);
     const std::string program = "chicken_shackling " + c.mode;
     return run_program(program.c_str(), [&] {
         if (c.mode == "--calibrate") return calibrate_side_run(c);

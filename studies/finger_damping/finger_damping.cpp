@@ -46,7 +46,6 @@
 #include "check/study.hpp"
 #include "core/error.hpp"
 #include "core/program.hpp"
-#include "core/progress.hpp"
 #include "core/units.hpp"
 #include "damping/identification.hpp"
 #include "damping/log_decrement.hpp"
@@ -511,22 +510,19 @@ int main(int argc, char** argv) {
     // Side runs (README): they print their findings; read strictly (check/side_run.hpp).
     check::SideRun side;
     if (const int status = run_program("finger_damping", [&] {
-            side = check::read_side_run(argc, argv, {"--tet-step-rules", "--alpha-cr-scatter"});
-            if (!side.help && !side.operands.empty())
+            side = check::read_side_run(
+                argc, argv, "finger_damping",
+                "side runs (one at a time; they print their findings):\n"
+                "  --tet-step-rules     which tet10 step rule gives Table 3-2's Case C and D steps\n"
+                "  --alpha-cr-scatter   how far Table 3-3's alpha_cr search moves with mesh, detector band and\n"
+                "                       bisection bracket (the tolerance of table-3-3/alpha-cr; ~27 min)\n",
+                {"--tet-step-rules", "--alpha-cr-scatter"});
+            if (!side.operands.empty())
                 throw InputError(fmt::format("{} takes no operand, got '{}'", side.mode, side.operands.front()));
             return 0;
         });
         status != 0)
         return status;
-    if (side.help) {
-        check::print_study_usage("finger_damping");
-        std::cout << "side runs (one at a time; they print their findings):\n"
-                     "  --tet-step-rules     which tet10 step rule gives Table 3-2's Case C and D steps\n"
-                     "  --alpha-cr-scatter   how far Table 3-3's alpha_cr search moves with mesh, detector band and\n"
-                     "                       bisection bracket (the tolerance of table-3-3/alpha-cr; ~27 min)\n";
-        return 0;
-    }
-    if (side.quiet) Progress::set_quiet(true);
     if (side.mode == "--tet-step-rules") return run_program("finger_damping --tet-step-rules", [] { return tet_step_rules(); });
     if (side.mode == "--alpha-cr-scatter") return run_program("finger_damping --alpha-cr-scatter", [] { return alpha_cr_scatter(); });
     return check::run_study("finger_damping", argc, argv, [](check::Study& study) {

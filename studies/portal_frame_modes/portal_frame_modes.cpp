@@ -31,7 +31,6 @@
 #include <cstdio>
 #include <filesystem>
 #include <fmt/format.h>
-#include <iostream>
 #include <map>
 #include <sstream>
 #include <string>
@@ -43,7 +42,6 @@
 #include "check/study.hpp"
 #include "core/error.hpp"
 #include "core/program.hpp"
-#include "core/progress.hpp"
 #include "core/units.hpp"
 #include "element/shell_mitc4.hpp"
 #include "io/atomic_file.hpp"
@@ -444,8 +442,14 @@ int main(int argc, char** argv) {
     check::SideRun side;
     std::filesystem::path screw_folder;
     if (const int status = run_program("portal_frame_modes", [&] {
-            side = check::read_side_run(argc, argv, {"--calibrate", "--sensitivity", "--screw-search"});
-            if (side.help) return 0;
+            side = check::read_side_run(
+                argc, argv, "portal_frame_modes",
+                "side runs (one at a time):\n"
+                "  --calibrate          repeat the calibration of the frame (about 45 s)\n"
+                "  --sensitivity        mesh refinement and screw-coupling variants (about 1 min)\n"
+                "  --screw-search [DIR] every choice of 1 and 2 missing screws, three screw models (123 modal\n"
+                "                       solves); DIR/screw-search.csv (default build/results/portal_frame_modes/screw-search)\n",
+                {"--calibrate", "--sensitivity", "--screw-search"});
             const std::size_t most = side.mode == "--screw-search" ? 1 : 0;
             if (side.operands.size() > most)
                 throw InputError(fmt::format("{} takes {}, got '{}'", side.mode, most ? "at most one operand (DIR)" : "no operand",
@@ -458,16 +462,6 @@ int main(int argc, char** argv) {
         });
         status != 0)
         return status;
-    if (side.help) {
-        check::print_study_usage("portal_frame_modes");
-        std::cout << "side runs (one at a time):\n"
-                     "  --calibrate          repeat the calibration of the frame (about 45 s)\n"
-                     "  --sensitivity        mesh refinement and screw-coupling variants (about 1 min)\n"
-                     "  --screw-search [DIR] every choice of 1 and 2 missing screws, three screw models (123 modal\n"
-                     "                       solves); DIR/screw-search.csv (default build/results/portal_frame_modes/screw-search)\n";
-        return 0;
-    }
-    if (side.quiet) Progress::set_quiet(true);
     if (side.mode == "--calibrate") return run_program("portal_frame_modes --calibrate", [] { return calibrate(); });
     if (side.mode == "--sensitivity") return run_program("portal_frame_modes --sensitivity", [] { return sensitivity(); });
     if (side.mode == "--screw-search")

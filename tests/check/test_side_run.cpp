@@ -59,7 +59,7 @@ fem::check::SideRun read(std::vector<std::string> words, double* dump_every = nu
     words.insert(words.begin(), "study");
     std::vector<char*> argv;
     for (auto& w : words) argv.push_back(w.data());
-    return fem::check::read_side_run(static_cast<int>(argv.size()), argv.data(), {"--grasp", "--shackle"}, {"--dump-every", "--resume"},
+    return fem::check::read_side_run(static_cast<int>(argv.size()), argv.data(), "study", "", {"--grasp", "--shackle"}, {"--dump-every", "--resume"},
                                      [&](fem::input::Arguments& args) {
                                          if (args.is("--dump-every")) *dump_every = args.real(fem::input::Range::positive());
                                      });
@@ -79,17 +79,17 @@ std::string error_of(std::vector<std::string> words) {
 
 TEST(SideRunCommandLine, ReadsTheModeItsOperandsAndOptionsStrictly) {
     double dump_every = 0;
-    const auto side = read({"--grasp", "4", "-0.5", "--dump-every", "0.01", "--results", "out", "--resume", "--quiet"}, &dump_every);
+    const auto side = read({"--grasp", "4", "-0.5", "--dump-every", "0.01", "--results", "out", "--resume"}, &dump_every);
     EXPECT_EQ(side.mode, "--grasp");
     EXPECT_EQ(side.operands, (std::vector<std::string>{"4", "-0.5"}));
     EXPECT_EQ(side.options, (std::vector<std::string>{"--dump-every", "--resume"}));
     EXPECT_EQ(side.results, fs::path("out"));
-    EXPECT_TRUE(side.quiet);
     EXPECT_EQ(dump_every, 0.01);
     // The study run: no mode; its own options pass through (Study reads them).
     const auto study = read({"--full", "--jobs", "2", "--figures", "f"});
     EXPECT_TRUE(study.mode.empty());
-    EXPECT_TRUE(read({"--grasp", "--full", "--help"}).help);  // --help: the rest is not judged
+    // --help prints the usage and ends the program with status 0, whatever else is given.
+    EXPECT_EXIT(read({"--grasp", "--full", "--help"}), ::testing::ExitedWithCode(0), "");
     EXPECT_NE(error_of({"--grasp", "4", "--dump-evry", "1"}).find("unknown option '--dump-evry' (did you mean '--dump-every'?)"),
               std::string::npos);
     EXPECT_NE(error_of({"--grasp", "--shackle"}).find("one side run at a time, got --grasp and --shackle"), std::string::npos);
