@@ -19,6 +19,11 @@ std::filesystem::path side_run_folder(std::string_view study, std::string_view r
     return std::filesystem::absolute(results_dir() / study / run);
 }
 
+void SideRun::refuse_results() const {
+    if (!results.empty())
+        throw InputError(fmt::format("command line: {} prints its findings and writes no files: --results has no effect", mode));
+}
+
 SideRun read_side_run(int argc, char** argv, std::string_view study, std::string_view usage,
                       const std::vector<std::string_view>& modes, const std::vector<std::string_view>& options,
                       const std::function<void(input::Arguments&)>& read_option) {

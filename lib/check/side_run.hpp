@@ -40,6 +40,8 @@ struct SideRun {
     std::vector<std::string> operands;  // its operands (the arguments after it up to the next option)
     std::filesystem::path results;      // --results DIR; empty: side_run_folder's default
     std::vector<std::string> options;   // the study's own side-run options given (e.g. "--resume")
+    /// For a side run that only prints: InputError when --results was given (it would have no effect).
+    void refuse_results() const;
 };
 
 /// Reads the command line of study program `study`. `modes`: its side runs; `options`: the options of

@@ -1616,6 +1616,7 @@ SideRunCommand parse_side_run(int argc, char** argv) {
             else if (args.is("--drum-phase")) c.variant.drum_phase = args.real(input::Range::closed(-90.0, 90.0)) * deg;
             else if (args.is("--dump-every")) c.restart.dump_every = args.real(input::Range::positive());  // [s] of model time
         });
+    if (c.mode == "--calibrate") c.refuse_results();
     if (!c.options.empty() && c.mode != "--grasp")  // all four are --grasp's
         throw InputError(fmt::format("command line: {} is an option of the --grasp side run{} (see --help)", c.options.front(),
                                      c.mode.empty() ? "" : ", not of " + c.mode));

@@ -519,6 +519,7 @@ int main(int argc, char** argv) {
                 {"--tet-step-rules", "--alpha-cr-scatter"});
             if (!side.operands.empty())
                 throw InputError(fmt::format("{} takes no operand, got '{}'", side.mode, side.operands.front()));
+            if (!side.mode.empty()) side.refuse_results();
             return 0;
         });
         status != 0)

@@ -454,6 +454,7 @@ int main(int argc, char** argv) {
             if (side.operands.size() > most)
                 throw InputError(fmt::format("{} takes {}, got '{}'", side.mode, most ? "at most one operand (DIR)" : "no operand",
                                              side.operands.back()));
+            if (side.mode == "--calibrate" || side.mode == "--sensitivity") side.refuse_results();
             if (!side.operands.empty() && !side.results.empty())
                 throw InputError("--screw-search: give its folder once, as DIR or as --results DIR");
             screw_folder = side.operands.empty() ? check::side_run_folder("portal_frame_modes", "screw-search", side.results)

@@ -97,4 +97,7 @@ TEST(SideRunCommandLine, ReadsTheModeItsOperandsAndOptionsStrictly) {
               std::string::npos);
     EXPECT_NE(error_of({"--grasp", "--dump-every", "0"}).find("--dump-every: must be a finite number > 0, got 0"), std::string::npos);
     EXPECT_NE(error_of({"--grasp", "--results"}).find("option '--results' needs a value"), std::string::npos);
+    // A side run that only prints refuses --results rather than ignore it.
+    EXPECT_THROW(read({"--shackle", "--results", "out"}).refuse_results(), fem::InputError);
+    EXPECT_NO_THROW(read({"--shackle"}).refuse_results());
 }
