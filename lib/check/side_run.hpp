@@ -42,15 +42,23 @@ struct SideRun {
     std::vector<std::string> options;   // the study's own side-run options given (e.g. "--resume")
     /// For a side run that only prints: InputError when --results was given (it would have no effect).
     void refuse_results() const;
+    /// InputError when the mode has more than `most` operands; `names` says what they are (e.g.
+    /// "case, end time").
+    void at_most_operands(std::size_t most, std::string_view names = {}) const;
+};
+
+/// A side-run option of a study (beyond the modes) and the mode it belongs to.
+struct SideRunOption {
+    std::string_view name, mode;
 };
 
 /// Reads the command line of study program `study`. `modes`: its side runs; `options`: the options of
 /// its side runs beyond them, each read by `read_option` (given the Arguments at that option, to take
-/// its value); the caller says which mode an option belongs to. Throws InputError as above. --help
+/// its value); one given without its mode is an input error naming both. Throws InputError as above. --help
 /// prints the study's usage and `usage` (its side runs) and exits 0 (an unknown option or a bad value
 /// before it is still an error); --quiet with a side run turns its progress lines off (Progress).
 SideRun read_side_run(int argc, char** argv, std::string_view study, std::string_view usage,
-                      const std::vector<std::string_view>& modes, const std::vector<std::string_view>& options = {},
+                      const std::vector<std::string_view>& modes, const std::vector<SideRunOption>& options = {},
                       const std::function<void(input::Arguments&)>& read_option = {});
 
 /// The absolute folder of side run `run` of `study`: `results_option`, the DIR of the command line's

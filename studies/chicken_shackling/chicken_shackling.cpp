@@ -1609,7 +1609,7 @@ SideRunCommand parse_side_run(int argc, char** argv) {
     SideRunCommand c;
     static_cast<check::SideRun&>(c) = check::read_side_run(
         argc, argv, "chicken_shackling", kSideRunUsage, {"--calibrate", "--shackle", "--grasp", "--grasp-verdicts"},
-        {"--resume", "--friction-decay", "--drum-phase", "--dump-every"},
+        {{"--resume", "--grasp"}, {"--friction-decay", "--grasp"}, {"--drum-phase", "--grasp"}, {"--dump-every", "--grasp"}},
         [&](input::Arguments& args) {
             if (args.is("--resume")) c.restart.resume = true;
             else if (args.is("--friction-decay")) c.variant.friction_decay = args.real(input::Range::non_negative());  // c_d [s/m]
@@ -1617,9 +1617,6 @@ SideRunCommand parse_side_run(int argc, char** argv) {
             else if (args.is("--dump-every")) c.restart.dump_every = args.real(input::Range::positive());  // [s] of model time
         });
     if (c.mode == "--calibrate") c.refuse_results();
-    if (!c.options.empty() && c.mode != "--grasp")  // all four are --grasp's
-        throw InputError(fmt::format("command line: {} is an option of the --grasp side run{} (see --help)", c.options.front(),
-                                     c.mode.empty() ? "" : ", not of " + c.mode));
     return c;
 }
 
@@ -1636,9 +1633,7 @@ int calibrate_side_run(const SideRunCommand& c) {
 int shackle_side_run(const SideRunCommand& c) {
     // Each operand read whole ("0.1x" is refused, not read as 0.1), each choice checked.
     const std::vector<std::string>& op = c.operands;
-    if (op.size() > 5)
-        throw InputError(fmt::format("--shackle takes at most five operands (case, end time, mass scaling step, "
-                                     "drive ramp, damping frame), got {}: '{}'", op.size(), op[5]));
+    c.at_most_operands(5, "case, end time, mass scaling step, drive ramp, damping frame");
     const std::vector<std::string> cases = {"rotating", "inverting"}, frames = {"absolute", "drive"};
     const std::string which = input::check_choice(op.empty() ? "rotating" : op[0], {"command line", 0, "--shackle (case)"}, cases);
     const bool rotating = which == "rotating";
@@ -1704,8 +1699,7 @@ int grasp_verdicts_side_run(const SideRunCommand& c) {
 // five: README, Step 3).
 int grasp_side_run(const SideRunCommand& c) {
     const std::vector<std::string>& op = c.operands;
-    if (op.size() > 2)
-        throw InputError(fmt::format("--grasp takes at most two operands (case, end time), got {}: '{}'", op.size(), op[2]));
+    c.at_most_operands(2, "case, end time");
     const int number =
         !op.empty() ? input::parse_integer<int>(op[0], {"command line", 0, "--grasp (Table 5-4 case)"}, {.min = 1, .max = 5}) : 4;
     const double end =

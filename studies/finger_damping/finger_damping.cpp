@@ -517,8 +517,7 @@ int main(int argc, char** argv) {
                 "  --alpha-cr-scatter   how far Table 3-3's alpha_cr search moves with mesh, detector band and\n"
                 "                       bisection bracket (the tolerance of table-3-3/alpha-cr; ~27 min)\n",
                 {"--tet-step-rules", "--alpha-cr-scatter"});
-            if (!side.operands.empty())
-                throw InputError(fmt::format("{} takes no operand, got '{}'", side.mode, side.operands.front()));
+            side.at_most_operands(0);
             if (!side.mode.empty()) side.refuse_results();
             return 0;
         });

@@ -450,10 +450,7 @@ int main(int argc, char** argv) {
                 "  --screw-search [DIR] every choice of 1 and 2 missing screws, three screw models (123 modal\n"
                 "                       solves); DIR/screw-search.csv (default build/results/portal_frame_modes/screw-search)\n",
                 {"--calibrate", "--sensitivity", "--screw-search"});
-            const std::size_t most = side.mode == "--screw-search" ? 1 : 0;
-            if (side.operands.size() > most)
-                throw InputError(fmt::format("{} takes {}, got '{}'", side.mode, most ? "at most one operand (DIR)" : "no operand",
-                                             side.operands.back()));
+            side.at_most_operands(side.mode == "--screw-search" ? 1 : 0, "DIR");
             if (side.mode == "--calibrate" || side.mode == "--sensitivity") side.refuse_results();
             if (!side.operands.empty() && !side.results.empty())
                 throw InputError("--screw-search: give its folder once, as DIR or as --results DIR");

@@ -59,7 +59,7 @@ fem::check::SideRun read(std::vector<std::string> words, double* dump_every = nu
     words.insert(words.begin(), "study");
     std::vector<char*> argv;
     for (auto& w : words) argv.push_back(w.data());
-    return fem::check::read_side_run(static_cast<int>(argv.size()), argv.data(), "study", "", {"--grasp", "--shackle"}, {"--dump-every", "--resume"},
+    return fem::check::read_side_run(static_cast<int>(argv.size()), argv.data(), "study", "", {"--grasp", "--shackle"}, {{"--dump-every", "--grasp"}, {"--resume", "--grasp"}},
                                      [&](fem::input::Arguments& args) {
                                          if (args.is("--dump-every")) *dump_every = args.real(fem::input::Range::positive());
                                      });
@@ -97,6 +97,17 @@ TEST(SideRunCommandLine, ReadsTheModeItsOperandsAndOptionsStrictly) {
               std::string::npos);
     EXPECT_NE(error_of({"--grasp", "--dump-every", "0"}).find("--dump-every: must be a finite number > 0, got 0"), std::string::npos);
     EXPECT_NE(error_of({"--grasp", "--results"}).find("option '--results' needs a value"), std::string::npos);
+    // An option of one side run beside another, or alone.
+    EXPECT_NE(error_of({"--shackle", "--resume"}).find("--resume is an option of the --grasp side run, not of --shackle"), std::string::npos);
+    EXPECT_NE(error_of({"--resume"}).find("--resume is an option of the --grasp side run (see --help)"), std::string::npos);
+    // Surplus operands.
+    EXPECT_THROW(read({"--shackle", "a"}).at_most_operands(0), fem::InputError);
+    try {
+        read({"--grasp", "4", "1", "x"}).at_most_operands(2, "case, end time");
+        ADD_FAILURE() << "a third operand was accepted";
+    } catch (const fem::InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("--grasp takes at most 2 operands (case, end time), got 3: 'x'"), std::string::npos) << e.what();
+    }
     // A side run that only prints refuses --results rather than ignore it.
     EXPECT_THROW(read({"--shackle", "--results", "out"}).refuse_results(), fem::InputError);
     EXPECT_NO_THROW(read({"--shackle"}).refuse_results());
