@@ -35,8 +35,10 @@ const Ranks& ranks() { return *backend(); }
 
 void set_ranks(std::unique_ptr<Ranks> b) { backend() = b ? std::move(b) : std::make_unique<SerialRanks>(); }
 
-int case_jobs(const Study& study) {
-    if (study.jobs() > 0) return study.jobs();
+int case_jobs(const Study& study) { return case_jobs(study.jobs()); }
+
+int case_jobs(int requested) {
+    if (requested > 0) return requested;
     if (const char* env = std::getenv("FEM_JOBS")) {
         char* end = nullptr;
         const long j = std::strtol(env, &end, 10);

@@ -63,6 +63,9 @@ void set_ranks(std::unique_ptr<Ranks> backend);
 
 /// Cases run at once in this process for `study` (see the top).
 int case_jobs(const Study& study);
+/// The same for a program without a Study (fem-sweep): `requested` when > 0 (its --jobs), else
+/// FEM_JOBS, else the hardware threads shared among the MPI ranks on this machine.
+int case_jobs(int requested);
 
 namespace detail {
 /// Under MPI with several ranks on this machine: each rank's OpenMP threads get their share of the
@@ -90,11 +93,11 @@ namespace detail {
 std::vector<int> deal_cases(int n, int size, const CaseOptions& options);
 }  // namespace detail
 
-/// Runs fn(0), ..., fn(n - 1) (independent cases, see the top) and returns their results in case
-/// order, on every rank.
+/// Runs fn(0), ..., fn(n - 1) (independent cases, see the top), up to `jobs` at once in this
+/// process, and returns their results in case order, on every rank.
 template <class Result, class F>
     requires std::invocable<F&, int> && std::convertible_to<std::invoke_result_t<F&, int>, Result>
-std::vector<Result> run_cases(const Study& study, int n, F&& fn, const CaseOptions& options = {}) {
+std::vector<Result> run_cases(int jobs, int n, F&& fn, const CaseOptions& options = {}) {
     std::vector<std::unique_ptr<Result>> slots(n);
     const int size = ranks().size(), rank = ranks().rank();
     const bool deal = size > 1 && detail::JsonExchangeable<Result>;
@@ -102,7 +105,7 @@ std::vector<Result> run_cases(const Study& study, int n, F&& fn, const CaseOptio
     std::vector<int> mine;
     for (int k = 0; k < n; ++k)
         if (!deal || owner[k] == rank) mine.push_back(k);
-    detail::run_local(mine, case_jobs(study), [&](int k) { slots[k] = std::make_unique<Result>(fn(k)); });
+    detail::run_local(mine, jobs, [&](int k) { slots[k] = std::make_unique<Result>(fn(k)); });
     if constexpr (detail::JsonExchangeable<Result>) {
         if (deal) {
             // Every rank's results as one JSON array of [case, result], gathered on every rank.
@@ -119,6 +122,13 @@ std::vector<Result> run_cases(const Study& study, int n, F&& fn, const CaseOptio
     results.reserve(n);
     for (auto& s : slots) results.push_back(std::move(*s));
     return results;
+}
+
+/// run_cases for a study: as many at once as case_jobs(study).
+template <class Result, class F>
+    requires std::invocable<F&, int> && std::convertible_to<std::invoke_result_t<F&, int>, Result>
+std::vector<Result> run_cases(const Study& study, int n, F&& fn, const CaseOptions& options = {}) {
+    return run_cases<Result>(case_jobs(study), n, std::forward<F>(fn), options);
 }
 
 }  // namespace fem::check

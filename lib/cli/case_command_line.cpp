@@ -11,7 +11,7 @@ std::optional<CaseCommandLine> read_case_command_line(int argc, char** argv, std
                                                       bool explicit_run) {
     CaseCommandLine c;
     input::Arguments args(argc, argv,
-                          explicit_run ? std::initializer_list<std::string_view>{"--help", "--output", "--quiet", "--end-time", "--resume"}
+                          explicit_run ? std::initializer_list<std::string_view>{"--help", "--output", "--quiet", "--end-time", "--resume", "--set"}
                                        : std::initializer_list<std::string_view>{"--help", "--output", "--quiet"});
     while (args.next()) {
         if (args.is("--help") || args.is("-h")) {
@@ -21,6 +21,9 @@ std::optional<CaseCommandLine> read_case_command_line(int argc, char** argv, std
             c.output = args.value();
         } else if (explicit_run && args.is("--end-time")) {
             c.end_time = args.real(input::Range::positive());
+        } else if (explicit_run && args.is("--set")) {
+            const std::string assignment = args.value();
+            c.settings.push_back(input::Setting::parse(assignment, "--set " + assignment));
         } else if (explicit_run && args.is("--resume")) {
             c.resume = true;
         } else if (args.is("--quiet")) {

@@ -1,8 +1,11 @@
 // fem-explicit: the explicit solver (thesis Sec 2.3, Ch 4) on a TOML case file
 // (lib/explicit_case/case_file.hpp; every key: lib/explicit_case/CASE_FILE.md).
 //
-//   fem-explicit case.toml [--output DIR] [--end-time T] [--resume] [--quiet]
+//   fem-explicit case.toml [--set KEY=VALUE ...] [--output DIR] [--end-time T] [--resume] [--quiet]
 //
+// --set KEY=VALUE replaces a value of the case file before it is read (repeatable; input::Setting):
+// `--set part[finger].alpha=20 --set control.end_time=0.5`. A design study of many such runs is
+// fem-sweep's (lib/explicit_case/sweep.hpp).
 // --end-time T ends the run at T seconds instead of [control] end_time (a short look at a long case,
 // e.g. the CTest smoke runs of the Ch 4 studies' case files; phases starting at or after T are left out).
 // --resume continues a run that was killed (SIGKILL, a crash) in DIR from the last restart dump it
@@ -31,14 +34,16 @@ namespace fem::cli {
 int explicit_program(int argc, char** argv) {
     return fem::run_program("fem-explicit", [&]() {
         const auto line = read_case_command_line(
-            argc, argv, "fem-explicit CASE.toml [--output DIR] [--end-time T] [--resume] [--quiet]",
+            argc, argv, "fem-explicit CASE.toml [--set KEY=VALUE ...] [--output DIR] [--end-time T] [--resume] [--quiet]",
             "Explicit dynamics (central differences, penalty contact, rigid parts) of a TOML case\n"
             "file; every key: lib/explicit_case/CASE_FILE.md. Writes summary.txt, run.json,\n"
             "histories.h5, histories.dat, energies.dat (and VTU/PVD, restart dumps) to DIR.\n"
+            "--set KEY=VALUE: replace a value of the case file before it is read, e.g.\n"
+            "  --set part[finger].alpha=20 (an [[part]] entry by name or index), --set control.end_time=0.5.\n"
             "--end-time T: end the run at T seconds instead of [control] end_time.\n"
             "--resume: continue the run killed in DIR from the last restart dump it wrote.\n", true);
         if (!line) return 0;  // --help
-        auto c = fem::explicit_case::read_case(line->case_path);
+        auto c = fem::explicit_case::read_case(line->case_path, line->settings);
         if (!line->output.empty()) c.output.folder = line->output;
         if (line->end_time) fem::explicit_case::cut_at(c, *line->end_time);
         const auto outcome = fem::explicit_case::run_case(c, line->quiet, line->resume);

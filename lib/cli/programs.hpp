@@ -8,8 +8,10 @@ namespace fem::cli {
 
 /// fem-modal case.toml|model.inp [--output DIR] [--modes N] [--shapes N] [--export-deck F]  (lib/cli/modal_program.cpp)
 int modal_program(int argc, char** argv);
-/// fem-explicit case.toml [--output DIR] [--quiet]  (lib/cli/explicit_program.cpp)
+/// fem-explicit case.toml [--set KEY=VALUE ...] [--output DIR] [--quiet]  (lib/cli/explicit_program.cpp)
 int explicit_program(int argc, char** argv);
+/// fem-sweep sweep.toml [--output DIR] [--jobs N] [--resume] [--quiet]  (lib/cli/sweep_program.cpp)
+int sweep_program(int argc, char** argv);
 /// fem-topopt case.toml [--output DIR] [--quiet]  (lib/cli/topopt_program.cpp)
 int topopt_program(int argc, char** argv);
 

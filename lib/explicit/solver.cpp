@@ -868,6 +868,23 @@ void ExplicitSolver::unstable(const std::string& why, int bad_group, int bad_ele
         place = fmt::format("{} (initially centred at {:.4g}, {:.4g}, {:.4g})", block_element_name(block, element),
                             centre.x(), centre.y(), centre.z());
     }
+    // A flat hexahedron with bulk viscosity: the viscosity's pressure acts over the cube root of the
+    // element's volume (LS-DYNA's length for solids), while its Table 2-1 step allows for damping over
+    // the step's own length V / A_max only; far apart, the step leaves no room for that damping
+    // (README "Flat hexahedra and bulk viscosity": a bar of 1.25 x 20 x 20 mm elements at dt_scale 0.9).
+    double flatness = 1.0, viscous_length = 0.0, step_length = 0.0;  // cbrt(V) / (V / A_max), the two lengths
+    if (block >= 0 && mesh.blocks[block].shape == ElementShape::Hex8) {
+        bool viscous = false;
+        for (const auto& g : model_.groups())
+            if (g->block == block) viscous = g->adds_viscous_forces();
+        std::array<Vec3, 8> X;
+        std::vector<Vec3> corners;
+        const auto conn = mesh.blocks[block].element(element);
+        for (int a = 0; a < 8; ++a) corners.push_back(X[a] = s_.X[conn[a]]);
+        step_length = cfl::hexahedron_length(X);
+        viscous_length = std::cbrt(centre_jacobian(ElementShape::Hex8, corners) / 64.0);  // 64 V (mesh.hpp's edge sums)
+        if (viscous && step_length > 0.0) flatness = viscous_length / step_length;
+    }
     // Why, most likely: a fixed step above the critical one (Eq 2-27), else a deformation the mesh
     // cannot follow: an inverted element, or elements collapsing faster than the step adapts.
     const double dt_used = dt_half_ > 0.0 ? dt_half_ : (opt_.fixed_dt > 0 ? opt_.fixed_dt : opt_.dt_scale * dt_crit_);
@@ -882,6 +899,13 @@ void ExplicitSolver::unstable(const std::string& why, int bad_group, int bad_ele
         cause = fmt::format("the critical step fell below the step in use ({:.4g} < {:.4g} s, {}): elements collapsing "
                             "faster than the step adapts, {}", dt_crit_, dt_used, element_name(dt_group_, dt_element_),
                             too_large);
+    else if (flatness > 3.0 && ratio > 0.9 && ratio < 1.1)
+        cause = fmt::format("a flat element with bulk viscosity: the viscosity acts over the cube root of its volume, "
+                            "{:.3g} m, {:.3g} x the length V / A_max = {:.3g} m its Table 2-1 step is taken over, and "
+                            "that step leaves no room for the damping (the element's volume is {:.3g} x its initial "
+                            "one: no large deformation); lower the step scale (fem-explicit: [control] dt_scale) or "
+                            "use less flat elements",
+                            viscous_length, flatness, step_length, ratio);
     else
         cause = fmt::format("a deformation the mesh cannot follow (the element's volume is now {:.3g} x its initial "
                             "one): {}", ratio, too_large);

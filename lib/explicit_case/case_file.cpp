@@ -614,7 +614,11 @@ void cut_at(ExplicitCase& c, double t_end) {
     if (c.phases.size() == 1) c.phases.clear();
 }
 
-ExplicitCase read_case(const std::filesystem::path& path) { return from_document(input::TomlDocument::read(path)); }
+ExplicitCase read_case(const std::filesystem::path& path, const std::vector<input::Setting>& settings) {
+    input::TomlDocument doc = input::TomlDocument::read(path);
+    for (const input::Setting& s : settings) doc.apply(s);
+    return from_document(doc);
+}
 
 ExplicitCase parse_case(std::string_view text, const std::string& source, const std::filesystem::path& base) {
     return from_document(input::TomlDocument::parse(text, source, base));

@@ -49,6 +49,7 @@
 #include "contact/friction.hpp"
 #include "explicit/solver.hpp"
 #include "hand/scene.hpp"
+#include "input/toml_input.hpp"
 #include "material/elastic.hpp"
 #include "mesh/ellipsoid.hpp"
 
@@ -198,8 +199,9 @@ struct ExplicitCase {
     bool cut = false;  // ended early by cut_at (--end-time): an exemption's runs need not reach its limit
 };
 
-/// Reads and validates a case file (InputError "file:line: key: problem").
-ExplicitCase read_case(const std::filesystem::path& path);
+/// Reads and validates a case file (InputError "file:line: key: problem"), with `settings` replacing
+/// values of the file before it is read (fem-explicit --set, a sweep's cases: input::Setting).
+ExplicitCase read_case(const std::filesystem::path& path, const std::vector<input::Setting>& settings = {});
 /// The same from text; `source` names it in messages, `base` is where relative paths start.
 ExplicitCase parse_case(std::string_view text, const std::string& source, const std::filesystem::path& base = ".");
 
@@ -237,6 +239,13 @@ private:
 
 /// The solver options of a case, with its output files under `folder` (the run's staging folder).
 ExplicitOptions solver_options(const ExplicitCase& c, const CaseModel& m, const std::filesystem::path& folder);
+
+/// The columns of the run's histories.dat and energies.dat (run_case writes them; a sweep's
+/// [[result]]s read them): time_s, then <node>_ux_m, <node>_vx_m_per_s, ... y, z for each
+/// [[output.node]]; time_s, kinetic_J, internal_J, hourglass_J, damping_J, viscous_J, external_J,
+/// contact_J, balance_error_J.
+std::vector<std::string> history_columns(const ExplicitCase& c);
+const std::vector<std::string>& energy_columns();
 
 /// What run_case did: its summary text (summary.txt) and the verdict line of every run whose health
 /// failed (check/run_health.hpp: energy balance error above 1 % or hourglass energy above 10 % of

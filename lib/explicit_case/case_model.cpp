@@ -303,31 +303,44 @@ ExplicitOptions solver_options(const ExplicitCase& c, const CaseModel& m, const 
 }
 
 namespace {
+// A history node's column: its name, u or v, the axis, the unit.
+std::string node_column(const std::string& node, char quantity, int axis) {
+    return fmt::format("{}_{}{}_{}", node, quantity, "xyz"[axis], quantity == 'u' ? "m" : "m_per_s");
+}
+}  // namespace
+
+std::vector<std::string> history_columns(const ExplicitCase& c) {
+    std::vector<std::string> columns{"time_s"};
+    for (const HistoryNode& n : c.output.nodes)
+        for (int d = 0; d < 3; ++d) columns.insert(columns.end(), {node_column(n.name, 'u', d), node_column(n.name, 'v', d)});
+    return columns;
+}
+
+const std::vector<std::string>& energy_columns() {
+    static const std::vector<std::string> columns{"time_s",    "kinetic_J", "internal_J", "hourglass_J",    "damping_J",
+                                                  "viscous_J", "external_J", "contact_J", "balance_error_J"};
+    return columns;
+}
+
+namespace {
 
 void write_histories(const std::filesystem::path& dir, const History& h) {
     io::Table nodes;
     nodes.add("time_s", h.time);
     for (const auto& n : h.nodes) {
-        const char* axis[] = {"x", "y", "z"};
         for (int d = 0; d < 3; ++d) {
             std::vector<double> u, v;
             for (const Vec3& x : n.displacement) u.push_back(x[d]);
             for (const Vec3& x : n.velocity) v.push_back(x[d]);
-            nodes.add(fmt::format("{}_u{}_m", n.name, axis[d]), u);
-            nodes.add(fmt::format("{}_v{}_m_per_s", n.name, axis[d]), v);
+            nodes.add(node_column(n.name, 'u', d), u);
+            nodes.add(node_column(n.name, 'v', d), v);
         }
     }
     io::write_dat(dir / "histories.dat", nodes);
+    const std::vector<std::vector<double>> energies{h.time,    h.kinetic,  h.internal, h.hourglass, h.damping,
+                                                    h.viscous, h.external, h.contact,  h.balance};
     io::Table e;
-    e.add("time_s", h.time)
-        .add("kinetic_J", h.kinetic)
-        .add("internal_J", h.internal)
-        .add("hourglass_J", h.hourglass)
-        .add("damping_J", h.damping)
-        .add("viscous_J", h.viscous)
-        .add("external_J", h.external)
-        .add("contact_J", h.contact)
-        .add("balance_error_J", h.balance);
+    for (std::size_t i = 0; i < energies.size(); ++i) e.add(energy_columns()[i], energies[i]);
     io::write_dat(dir / "energies.dat", e);
     if (!h.max_von_mises.empty()) {  // element histories: the largest von Mises stress of each part
         io::Table vm;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <charconv>
 #include <cmath>
 #include <fstream>
 #include <map>
@@ -21,6 +22,14 @@ struct TomlDocument::State {
     std::filesystem::path base;
     std::unordered_set<const toml::node*> read;                   // values the reader took
     std::map<const toml::table*, std::vector<std::string>> asked;  // keys the reader asked for, per table
+    std::map<const toml::node*, std::string> set_by;               // values replaced by a Setting: its origin
+
+    // Where a value is: its line in the file, or the Setting that put it there.
+    Where at(const toml::node* n, int line, std::string key) const {
+        if (n)
+            if (const auto s = set_by.find(n); s != set_by.end()) return {s->second, 0, std::move(key)};
+        return {source, line, std::move(key)};
+    }
 };
 
 namespace {
@@ -90,7 +99,7 @@ void TomlDocument::finish() const {
             const auto asked = state_->asked.find(&t);
             const std::vector<std::string> known = asked == state_->asked.end() ? std::vector<std::string>{} : asked->second;
             if (!state_->read.count(&v)) {
-                const Where at{state_->source, static_cast<int>(k.source().begin.line), name};
+                const Where at = state_->at(&v, static_cast<int>(k.source().begin.line), name);
                 if (std::find(known.begin(), known.end(), key) != known.end())
                     fail(at, fmt::format("'{}' has no effect with the other settings of this case; remove it", key));
                 fail(at, fmt::format("unknown key '{}'{}", key, did_you_mean(key, known)));
@@ -105,6 +114,134 @@ void TomlDocument::finish() const {
     visit(visit, state_->root, "");
 }
 
+Setting Setting::parse(std::string_view assignment, std::string origin) {
+    const auto trim = [](std::string_view s) {
+        while (!s.empty() && std::isspace(static_cast<unsigned char>(s.front()))) s.remove_prefix(1);
+        while (!s.empty() && std::isspace(static_cast<unsigned char>(s.back()))) s.remove_suffix(1);
+        return std::string(s);
+    };
+    const auto eq = assignment.find('=');
+    if (eq == std::string_view::npos) fail({origin, 0, ""}, "expected KEY=VALUE (e.g. part[finger].alpha=20), got no '='");
+    Setting s{trim(assignment.substr(0, eq)), trim(assignment.substr(eq + 1)), std::move(origin)};
+    if (s.key.empty()) fail({s.origin, 0, ""}, "expected KEY=VALUE, got no key before '='");
+    if (s.value.empty()) fail({s.origin, 0, ""}, "expected KEY=VALUE, got no value after '='");
+    return s;
+}
+
+namespace {
+
+// One step of a Setting's key: a key, and for an array of tables the entry ("[2]", "[finger]").
+struct KeyStep {
+    std::string key, entry;
+    bool has_entry = false;
+};
+
+std::vector<KeyStep> key_steps(const Setting& s) {
+    std::vector<KeyStep> steps;
+    const std::string& k = s.key;
+    std::size_t i = 0;
+    while (i <= k.size()) {
+        KeyStep step;
+        while (i < k.size() && k[i] != '.' && k[i] != '[') step.key += k[i++];
+        if (i < k.size() && k[i] == '[') {
+            const auto close = k.find(']', i);
+            if (close == std::string::npos) fail({s.origin, 0, ""}, fmt::format("key '{}': '[' without ']'", k));
+            step.entry = k.substr(i + 1, close - i - 1);
+            step.has_entry = true;
+            i = close + 1;
+        }
+        const bool bare = !step.key.empty() && std::all_of(step.key.begin(), step.key.end(), [](char c) {
+            return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-';
+        });
+        if (!bare || (step.has_entry && step.entry.empty()))
+            fail({s.origin, 0, ""}, fmt::format("key '{}' is not of the form table.key, array[index].key or array[name].key", k));
+        steps.push_back(std::move(step));
+        if (i == k.size()) break;
+        if (k[i] != '.') fail({s.origin, 0, ""}, fmt::format("key '{}': expected '.' after ']'", k));
+        ++i;
+    }
+    return steps;
+}
+
+// The TOML value of a Setting: its text as TOML, or a bare word as a string.
+toml::table setting_value(const Setting& s) {
+    try {
+        return toml::parse("value = " + s.value);
+    } catch (const toml::parse_error&) {
+        const bool word = std::all_of(s.value.begin(), s.value.end(), [](char c) {
+            return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.' || c == '+';
+        });
+        if (!word)
+            fail({s.origin, 0, s.key}, fmt::format("'{}' is not a TOML value (a number, true/false, \"text\", [a, b, ...] or "
+                                                  "{{ key = value }})", s.value));
+        toml::table t;
+        t.insert("value", s.value);
+        return t;
+    }
+}
+
+void mark_set_by(std::map<const toml::node*, std::string>& set_by, const toml::node& n, const std::string& origin) {
+    set_by[&n] = origin;
+    if (const auto* t = n.as_table())
+        for (const auto& [k, v] : *t) mark_set_by(set_by, v, origin);
+    if (const auto* a = n.as_array())
+        for (const auto& v : *a) mark_set_by(set_by, v, origin);
+}
+
+}  // namespace
+
+void TomlDocument::apply(const Setting& s) {
+    const std::vector<KeyStep> steps = key_steps(s);
+    toml::table* table = &state_->root;
+    std::string name;  // the messages' path of `table`
+    for (std::size_t i = 0; i + 1 < steps.size(); ++i) {
+        const KeyStep& step = steps[i];
+        const std::string path = name.empty() ? step.key : name + "." + step.key;
+        toml::node* n = table->get(step.key);
+        if (!n) {
+            std::vector<std::string> keys;
+            for (const auto& [k, v] : *table)
+                if (v.is_table() || v.is_array()) keys.emplace_back(k.str());
+            fail({s.origin, 0, s.key}, fmt::format("the case has no '{}'{}", path, did_you_mean(step.key, keys)));
+        }
+        if (!step.has_entry) {
+            if (!n->is_table()) fail({s.origin, 0, s.key}, fmt::format("'{}' is not a table", path));
+            table = n->as_table();
+            name = path;
+            continue;
+        }
+        toml::array* array = n->as_array();
+        if (!array || !array->is_array_of_tables())
+            fail({s.origin, 0, s.key}, fmt::format("'{}' is not an array of tables ([[{}]] entries)", path, step.key));
+        std::size_t index = array->size();
+        const bool numeric = std::all_of(step.entry.begin(), step.entry.end(), [](char c) { return std::isdigit(static_cast<unsigned char>(c)); });
+        std::vector<std::string> names;
+        for (std::size_t e = 0; e < array->size(); ++e) {
+            const toml::table& entry = *(*array)[e].as_table();
+            const std::string entry_name = entry["name"].value_or(std::string{});
+            if (!entry_name.empty()) names.push_back(entry_name);
+            if (index == array->size() && (numeric ? std::to_string(e) == step.entry : entry_name == step.entry)) index = e;
+        }
+        if (index == array->size()) {
+            if (numeric)
+                fail({s.origin, 0, s.key}, fmt::format("'{}' has {} entries (0 to {}), not [{}]", path, array->size(),
+                                                       array->size() - 1, step.entry));
+            fail({s.origin, 0, s.key},
+                 fmt::format("no [[{}]] entry has name = \"{}\"{}", path, step.entry, did_you_mean(step.entry, names)));
+        }
+        table = (*array)[index].as_table();
+        name = fmt::format("{}[{}]", path, index);
+    }
+    const KeyStep& last = steps.back();
+    if (last.has_entry)
+        fail({s.origin, 0, s.key}, fmt::format("set a value, not an array entry: '{}[{}]' names a whole table", last.key, last.entry));
+    toml::table parsed = setting_value(s);
+    if (const toml::node* old = table->get(last.key); old && old->is_table() != parsed["value"].is_table())
+        fail({s.origin, 0, s.key}, "replaces a table by a value or a value by a table");
+    parsed["value"].node()->visit([&](auto&& v) { table->insert_or_assign(last.key, v); });
+    mark_set_by(state_->set_by, *table->get(last.key), s.origin);
+}
+
 // ------------------------------------------------------------------------------------------------
 
 std::string TomlTable::key_path(std::string_view key) const {
@@ -113,12 +250,14 @@ std::string TomlTable::key_path(std::string_view key) const {
 
 Where TomlTable::where() const {
     const int line = table_ == &state_->root ? 0 : line_of(*table_);
-    return {state_->source, line, name_};
+    return state_->at(table_, line, name_);
 }
 
 Where TomlTable::where(std::string_view key) const {
-    if (const toml::node* n = table_->get(key)) return {state_->source, line_of(*n), key_path(key)};
-    return {state_->source, where().line, key_path(key)};
+    if (const toml::node* n = table_->get(key)) return state_->at(n, line_of(*n), key_path(key));
+    Where at = where();
+    at.key = key_path(key);
+    return at;
 }
 
 void TomlTable::fail(std::string_view key, std::string_view what) const { input::fail(where(key), what); }
@@ -135,7 +274,7 @@ void TomlTable::allow(std::initializer_list<std::string_view> keys) const {
     std::vector<std::string> allowed(keys.begin(), keys.end());
     for (const auto& [k, v] : *table_)
         if (std::find(allowed.begin(), allowed.end(), k.str()) == allowed.end())
-            input::fail({state_->source, static_cast<int>(k.source().begin.line), name_},
+            input::fail(state_->at(&v, static_cast<int>(k.source().begin.line), name_),
                         fmt::format("unknown key '{}'{}", k.str(), did_you_mean(k.str(), allowed)));
 }
 
@@ -196,8 +335,9 @@ const toml::array& array_of(const toml::node& n, const Where& at, std::string_vi
     fail(at, fmt::format("must be an array of {}, got {}", what, describe(n)));
 }
 
+// An element of an array a Setting put there has no line either (its origin names it).
 Where element_where(const Where& at, const toml::node& n, std::size_t i) {
-    return {at.file, line_of(n), fmt::format("{}[{}]", at.key, i)};
+    return {at.file, at.line > 0 ? line_of(n) : 0, fmt::format("{}[{}]", at.key, i)};
 }
 
 void check_count(const toml::array& a, std::size_t count, const Where& at, std::string_view what) {
@@ -308,6 +448,59 @@ std::vector<std::vector<double>> TomlTable::matrix(std::string_view key, std::si
         for (std::size_t j = 0; j < row.size(); ++j) values.push_back(real_of(row[j], element_where(row_at, row[j], j), range));
         out.push_back(std::move(values));
     }
+    return out;
+}
+
+namespace {
+// TOML text of a value that parses back to the same value (doubles in their shortest round-trip form).
+std::string toml_text(const toml::node& n) {
+    if (auto f = n.as_floating_point()) {
+        const double v = f->get();
+        if (std::isnan(v)) return "nan";
+        if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
+        char buffer[32];
+        const auto end = std::to_chars(buffer, buffer + sizeof buffer, v).ptr;  // shortest round trip
+        std::string t(buffer, end);
+        if (t.find_first_of(".eE") == std::string::npos) t += ".0";  // 3.0 stays a float
+        return t;
+    }
+    if (auto i = n.as_integer()) return std::to_string(i->get());
+    if (auto b = n.as_boolean()) return b->get() ? "true" : "false";
+    if (auto s = n.as_string()) {
+        std::string t = "\"";
+        for (char c : s->get()) {
+            if (c == '"' || c == '\\') t += '\\';
+            if (c == '\n') t += "\\n";
+            else t += c;
+        }
+        return t + "\"";
+    }
+    if (auto a = n.as_array()) {
+        std::string t = "[";
+        for (std::size_t i = 0; i < a->size(); ++i) t += fmt::format("{}{}", i ? ", " : "", toml_text((*a)[i]));
+        return t + "]";
+    }
+    if (auto tb = n.as_table()) {
+        std::string t = "{";
+        bool first = true;
+        for (const auto& [k, v] : *tb) {
+            t += fmt::format("{}{} = {}", first ? " " : ", ", quoted_key(k.str()), toml_text(v));
+            first = false;
+        }
+        return t + " }";
+    }
+    std::ostringstream os;  // dates and times as toml++ writes them
+    n.visit([&](auto&& v) { os << v; });
+    return os.str();
+}
+}  // namespace
+
+std::vector<std::string> TomlTable::value_texts(std::string_view key) const {
+    const Where at = where(key);
+    const toml::array& a = array_of(required(key), at, "values");
+    check_count(a, 0, at, "value");
+    std::vector<std::string> out;
+    for (std::size_t i = 0; i < a.size(); ++i) out.push_back(toml_text(a[i]));
     return out;
 }
 

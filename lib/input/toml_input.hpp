@@ -46,6 +46,22 @@ namespace fem::input {
 
 class TomlTable;
 
+/// One value of a case file replaced before it is read (LS-DYNA's *PARAMETER, an ANSYS parameter):
+/// `fem-explicit case.toml --set part[finger].alpha=20`, or one case of a sweep (fem-sweep). `key`
+/// is in the notation of the reader's messages: tables by name, an entry of an array of tables by its
+/// index or by the value of its `name` key ("control.end_time", "part[1].alpha",
+/// "part[finger].alpha", "rigid_part[pallet].motion[0].speed"); `value` is TOML text ("0.5",
+/// "[1.0, 0.0, 0.0]", "\"B\"", "true"; a bare word such as B is taken as the string "B"). The key's
+/// table must exist; the key itself may be absent from the file (a value left at its default).
+/// Messages about the value name `origin` instead of a line of the file ("--set part[1].alpha=-1:
+/// part[1].alpha: must be a number >= 0, got -1"); the reader still refuses a key it does not know.
+struct Setting {
+    std::string key, value, origin;
+    /// "key=value" (the first '='; spaces around either side dropped); InputError naming `origin`
+    /// when there is no '=' or either side is empty.
+    static Setting parse(std::string_view assignment, std::string origin);
+};
+
 /// A parsed TOML file and the record of which of its keys the reader has read.
 class TomlDocument {
 public:
@@ -54,6 +70,10 @@ public:
     static TomlDocument read(const std::filesystem::path& file);
     /// Parses text; `source` names it in messages, `base` is where relative paths start.
     static TomlDocument parse(std::string_view text, std::string source, std::filesystem::path base = ".");
+
+    /// Replaces (or adds) one value before anything is read (see Setting); InputError naming
+    /// setting.origin when its table or array entry does not exist or the value is not TOML.
+    void apply(const Setting& setting);
 
     TomlTable root() const;
     const std::string& source() const;
@@ -123,6 +143,10 @@ public:
     /// An array of rows, each an array of `columns` reals within range (a table of values, a time
     /// schedule [[t0, v0], [t1, v1], ...]); at least one row.
     std::vector<std::vector<double>> matrix(std::string_view key, std::size_t columns, Range range = Range::any()) const;
+    /// An array of any TOML values (at least one), each as TOML text that parses back to it: numbers
+    /// with every digit (shortest round trip), strings quoted. The values of a sweep's parameter
+    /// (Setting::value).
+    std::vector<std::string> value_texts(std::string_view key) const;
     /// An array of rows of `columns` strings (a table of names); at least one row.
     std::vector<std::vector<std::string>> string_matrix(std::string_view key, std::size_t columns) const;
 

@@ -52,7 +52,7 @@ std::vector<Case> load_cases() {
         t.allow({"name", "program", "input", "replace", "args", "exit", "messages"});
         Case c;
         c.name = t.string("name");
-        c.program = t.choice("program", {"fem-modal", "fem-topopt", "fem-explicit"});
+        c.program = t.choice("program", {"fem-modal", "fem-topopt", "fem-explicit", "fem-sweep"});
         c.input = t.string("input");
         if (t.has("replace"))
             for (const auto& row : t.string_matrix("replace", 2)) c.replace.emplace_back(row[0], row[1]);
@@ -63,7 +63,7 @@ std::vector<Case> load_cases() {
     }
     for (const auto& t : root.tables("sweep")) {
         t.allow({"name", "program", "input", "values", "messages", "fields"});
-        const std::string name = t.string("name"), program = t.choice("program", {"fem-modal", "fem-topopt", "fem-explicit"});
+        const std::string name = t.string("name"), program = t.choice("program", {"fem-modal", "fem-topopt", "fem-explicit", "fem-sweep"});
         const std::string input = t.string("input");
         const auto values = t.strings("values");
         const auto messages = t.strings("messages");
@@ -90,7 +90,8 @@ const std::vector<Case>& corpus() {
 // Runs program(args) in-process; returns the exit status, with stdout and stderr captured.
 int run(const std::string& program, std::vector<std::string> args, std::string& printed) {
     static const std::map<std::string, std::function<int(int, char**)>> programs = {
-        {"fem-modal", fem::cli::modal_program}, {"fem-topopt", fem::cli::topopt_program}, {"fem-explicit", fem::cli::explicit_program}};
+        {"fem-modal", fem::cli::modal_program}, {"fem-topopt", fem::cli::topopt_program}, {"fem-explicit", fem::cli::explicit_program},
+        {"fem-sweep", fem::cli::sweep_program}};
     args.insert(args.begin(), program);
     std::vector<char*> argv;
     for (auto& a : args) argv.push_back(a.data());
@@ -138,8 +139,10 @@ TEST_P(BadInput, EndsAsExpected) {
     const int status = run(c.program, args, printed);
     EXPECT_EQ(status, c.exit) << c.name << " printed:\n" << printed;
     for (const auto& m : c.messages) EXPECT_NE(printed.find(m), std::string::npos) << c.name << ": expected '" << m << "' in:\n" << printed;
-    if (status == 1) {  // a run that finished but failed a check (fem-explicit's run health): its results are kept
-        for (const char* f : {"summary.txt", "run.json"})
+    if (status == 1) {  // a run that finished but failed a check (fem-explicit's run health, a sweep's case): its results are kept
+        const auto kept = c.program == "fem-sweep" ? std::vector<const char*>{"summary.txt", "sweep.csv"}
+                                                   : std::vector<const char*>{"summary.txt", "run.json"};
+        for (const char* f : kept)
             EXPECT_TRUE(fs::exists(out / f)) << c.name << " failed its check but did not write " << f;
     } else if (status != 0 && fs::exists(out)) {
         for (const auto& entry : fs::recursive_directory_iterator(out))

@@ -1,10 +1,12 @@
-// fem-compare-results: are two runs of a study the same apart from timings? For the CTest test that
-// runs a study over MPI ranks against its serial run (check/cases.hpp).
-//   fem-compare-results <serial dir> <other dir> [<serial figures dir> <other figures dir>]
+// fem-compare-results: are two runs of a study the same apart from timings? For the CTest tests that
+// run a study or fem-sweep over MPI ranks against its serial run (check/cases.hpp).
+//   fem-compare-results [--skip NAME ...] <serial dir> <other dir> [<serial figures dir> <other figures dir>]
 // Every file under <other dir> must exist under <serial dir> with the same bytes, and every file of
-// <serial dir> must exist under <other dir>; runs.json is compared with the facts of the run's
-// environment removed from each run's values (wall and CPU times, rates, thread counts, the timing
-// split). With figure folders: every file of <other figures dir> must equal its namesake in <serial
+// <serial dir> must exist under <other dir>; JSON files (runs.json, a run's run.json, fem-sweep's
+// sweep.json) are compared with the facts of the run's environment removed from each run's values
+// (wall and CPU times, rates, thread counts, the timing split), tables (.dat, .csv with a header
+// line) without the columns so named. Files named by --skip (a run's summary.txt, whose text quotes
+// its timings) are only required to exist. With figure folders: every file of <other figures dir> must equal its namesake in <serial
 // figures dir> (which holds every study's figures). Prints each difference; exit 1 when any.
 // (Environment keys: the explicit summary's wall_s, element_cycles_per_s, threads, timing_s,
 // contact_share and its contact interfaces' search_s and forces_s; a study's own wall and set-up
@@ -15,6 +17,7 @@
 #include <iterator>
 #include <set>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -54,9 +57,66 @@ void differ(const std::string& what) {
     std::cout << "DIFFERS: " << what << '\n';
 }
 
+// The fields of one line of a table: whitespace-separated (.dat, '#' header), or comma-separated
+// with "quoted" fields (.csv).
+std::vector<std::string> fields(const std::string& line, bool csv) {
+    std::vector<std::string> out;
+    std::string f;
+    bool quoted = false, any = false;
+    for (char c : line) {
+        if (csv && c == '"') quoted = !quoted;
+        const bool split = csv ? (c == ',' && !quoted) : (c == ' ' || c == '\t');
+        if (split) {
+            if (csv || any) out.push_back(f);
+            f.clear();
+            any = false;
+        } else {
+            f += c;
+            any = true;
+        }
+    }
+    if (csv || any) out.push_back(f);
+    return out;
+}
+
+// A table's text without its environment columns (named in the first line).
+std::string without_environment_columns(const std::string& text, bool csv) {
+    std::vector<std::string> lines;
+    std::string line;
+    for (char c : text) {
+        if (c == '\n') lines.push_back(line), line.clear();
+        else line += c;
+    }
+    if (!line.empty()) lines.push_back(line);
+    if (lines.empty()) return text;
+    std::vector<std::string> header = fields(lines[0], csv);
+    if (!csv && !header.empty() && header[0] == "#") header.erase(header.begin());
+    std::set<std::size_t> drop;
+    for (std::size_t i = 0; i < header.size(); ++i)
+        if (environment_key(header[i])) drop.insert(i);
+    std::string out;
+    for (std::size_t l = 0; l < lines.size(); ++l) {
+        std::vector<std::string> f = fields(lines[l], csv);
+        if (l == 0 && !csv && !f.empty() && f[0] == "#") f.erase(f.begin());
+        for (std::size_t i = 0; i < f.size(); ++i)
+            if (!drop.count(i)) out += f[i] + "|";
+        out += "\n";
+    }
+    return out;
+}
+
+std::set<std::string> skipped;  // --skip NAME
+
 void compare_file(const fs::path& a, const fs::path& b) {
     if (!fs::exists(a)) return differ(b.string() + " has no counterpart " + a.string());
-    if (a.filename() == "runs.json") {
+    if (skipped.count(a.filename().string())) return;
+    if (a.extension() == ".dat" || a.extension() == ".csv") {
+        const bool csv = a.extension() == ".csv";
+        if (without_environment_columns(read(a), csv) != without_environment_columns(read(b), csv))
+            differ(a.string() + " vs " + b.string() + " (apart from timing columns)");
+        return;
+    }
+    if (a.extension() == ".json") {
         const auto ja = without_environment(nlohmann::json::parse(read(a)));
         const auto jb = without_environment(nlohmann::json::parse(read(b)));
         if (ja != jb) differ(a.string() + " vs " + b.string() + " (apart from timings)");
@@ -67,11 +127,16 @@ void compare_file(const fs::path& a, const fs::path& b) {
 }  // namespace
 
 int main(int argc, char** argv) {
-    if (argc != 3 && argc != 5) {
-        std::cerr << "usage: fem-compare-results <serial dir> <other dir> [<serial figures> <other figures>]\n";
+    std::vector<std::string> args;
+    for (int i = 1; i < argc; ++i) {
+        if (std::string(argv[i]) == "--skip" && i + 1 < argc) skipped.insert(argv[++i]);
+        else args.push_back(argv[i]);
+    }
+    if (args.size() != 2 && args.size() != 4) {
+        std::cerr << "usage: fem-compare-results [--skip NAME ...] <serial dir> <other dir> [<serial figures> <other figures>]\n";
         return 2;
     }
-    const fs::path serial = argv[1], other = argv[2];
+    const fs::path serial = args[0], other = args[1];
     for (const fs::path& d : {serial, other})
         if (!fs::is_directory(d)) {
             std::cerr << "input error: '" << d.string() << "' is not a folder\n";
@@ -83,8 +148,8 @@ int main(int argc, char** argv) {
     for (const auto& e : fs::recursive_directory_iterator(serial))
         if (e.is_regular_file() && !fs::exists(other / fs::relative(e.path(), serial)))
             differ(e.path().string() + " is missing from " + other.string());
-    if (argc == 5) {
-        const fs::path sf = argv[3], of = argv[4];
+    if (args.size() == 4) {
+        const fs::path sf = args[2], of = args[3];
         for (const auto& e : fs::recursive_directory_iterator(of))
             if (e.is_regular_file()) ++files, compare_file(sf / fs::relative(e.path(), of), e.path());
     }

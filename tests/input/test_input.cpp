@@ -213,3 +213,101 @@ TEST(Arguments, WholeNumbersAndUnknownOptions) {
 }
 
 }  // namespace
+
+namespace {
+// A case file in text, with the settings applied, read back through the strict getters.
+TomlDocument with_settings(const char* text, std::initializer_list<Setting> settings) {
+    TomlDocument doc = TomlDocument::parse(text, "case.toml");
+    for (const Setting& s : settings) doc.apply(s);
+    return doc;
+}
+
+constexpr const char* kSettingsCase = R"(
+[control]
+end_time = 1.0
+[[material]]
+name = "steel"
+E = 210e9
+[[material]]
+name = "rubber"
+E = 6.1e6
+[[part]]
+name = "bar"
+size = [1.0, 0.02, 0.02]
+)";
+}  // namespace
+
+TEST(Settings, ReplaceValuesByTablePathIndexOrEntryName) {
+    const TomlDocument doc = with_settings(kSettingsCase, {Setting::parse("control.end_time=0.5", "--set 1"),
+                                                   Setting::parse("material[rubber].E = 2e6", "--set 2"),
+                                                   Setting::parse("material[0].E=7e10", "--set 3"),
+                                                   Setting::parse("part[bar].size=[2.0, 0.1, 0.1]", "--set 4"),
+                                                   Setting::parse("part[0].mesh=box", "--set 5"),  // a bare word: a string
+                                                   Setting::parse("control.threads=2", "--set 6")});  // absent from the file
+    const TomlTable root = doc.root();
+    EXPECT_EQ(root.table("control").real("end_time"), 0.5);
+    EXPECT_EQ(root.table("control").integer<int>("threads"), 2);
+    const auto materials = root.tables("material");
+    EXPECT_EQ(materials[0].real("E"), 7e10);
+    EXPECT_EQ(materials[1].real("E"), 2e6);
+    const auto part = root.tables("part")[0];
+    EXPECT_EQ(part.reals("size", 3), (std::vector<double>{2.0, 0.1, 0.1}));
+    EXPECT_EQ(part.string("mesh"), "box");
+}
+
+TEST(Settings, ABadSettingNamesItsOriginAndThePath) {
+    EXPECT_ERROR(Setting::parse("control.end_time", "--set control.end_time"),
+                 "--set control.end_time: expected KEY=VALUE (e.g. part[finger].alpha=20), got no '='");
+    EXPECT_ERROR(Setting::parse("=1", "--set =1"), "no key before '='");
+    EXPECT_ERROR(Setting::parse("a=", "--set a="), "no value after '='");
+    EXPECT_ERROR(with_settings(kSettingsCase, {{"material[rubbr].E", "1", "--set x"}}),
+                 "--set x: material[rubbr].E: no [[material]] entry has name = \"rubbr\" (did you mean 'rubber'?)");
+    EXPECT_ERROR(with_settings(kSettingsCase, {{"material[2].E", "1", "--set x"}}), "'material' has 2 entries (0 to 1), not [2]");
+    EXPECT_ERROR(with_settings(kSettingsCase, {{"materials[0].E", "1", "--set x"}}), "the case has no 'materials' (did you mean 'material'?)");
+    EXPECT_ERROR(with_settings(kSettingsCase, {{"control[0].end_time", "1", "--set x"}}), "'control' is not an array of tables");
+    EXPECT_ERROR(with_settings(kSettingsCase, {{"control.end_time.x", "1", "--set x"}}), "'control.end_time' is not a table");
+    EXPECT_ERROR(with_settings(kSettingsCase, {{"material[0]", "1", "--set x"}}), "names a whole table");
+    EXPECT_ERROR(with_settings(kSettingsCase, {{"control", "1", "--set x"}}), "replaces a table by a value");
+    EXPECT_ERROR(with_settings(kSettingsCase, {{"control.end_time", "[1, ", "--set x"}}), "'[1, ' is not a TOML value");
+    EXPECT_ERROR(with_settings(kSettingsCase, {{"control..end_time", "1", "--set x"}}), "is not of the form");
+    EXPECT_ERROR(with_settings(kSettingsCase, {{"material[.E", "1", "--set x"}}), "'[' without ']'");
+}
+
+TEST(Settings, TheReaderNamesTheSettingNotALineOfTheFile) {
+    // A value the reader refuses, and a key it does not know, are reported at the setting.
+    TomlDocument doc = with_settings(kSettingsCase, {{"material[rubber].E", "-1.0", "--set material[rubber].E=-1.0"},
+                                             {"control.end_tme", "2.0", "--set control.end_tme=2.0"}});
+    const TomlTable root = doc.root();
+    EXPECT_ERROR(root.tables("material")[1].real("E", Range::positive()),
+                 "--set material[rubber].E=-1.0: material[1].E: must be a finite number > 0, got -1");
+    root.table("control").real("end_time");
+    (void)root.tables("material")[0].real("E");
+    (void)root.tables("part")[0].reals("size");
+    (void)root.tables("material")[0].string("name");
+    (void)root.tables("material")[1].string("name");
+    (void)root.tables("part")[0].string("name");
+    EXPECT_ERROR(doc.finish(), "--set control.end_tme=2.0: control: unknown key 'end_tme' (did you mean 'end_time'?)");
+    // An array element of a set array has no line either.
+    const TomlDocument arrays = with_settings(kSettingsCase, {{"part[bar].size", "[1.0, -2.0, 0.1]", "--set S"}});
+    EXPECT_ERROR(arrays.root().tables("part")[0].reals("size", 3, Range::positive()), "--set S: part[0].size[1]: must be a finite number > 0");
+}
+
+TEST(Settings, ValueTextsParseBackToTheSameValues) {
+    const std::vector<std::string> literals{"0.1",  "7e10",          "3.0",        "-2",   "true", "\"a \\\"b\\\"\"",
+                                            "[1.0, 2.5]", "{ x = 1.5e-300 }", "1e-5"};
+    std::string array = "v = [";
+    for (std::size_t i = 0; i < literals.size(); ++i) array += (i ? ", " : "") + literals[i];
+    const std::vector<std::string> texts = TomlDocument::parse(array + "]", "sweep.toml").root().value_texts("v");
+    ASSERT_EQ(texts.size(), literals.size());
+    EXPECT_EQ(texts[0], "0.1");
+    EXPECT_EQ(texts[1], "7e+10");
+    EXPECT_EQ(texts[2], "3.0");
+    EXPECT_EQ(texts[3], "-2");
+    EXPECT_EQ(texts[4], "true");
+    EXPECT_EQ(texts[5], literals[5]);
+    EXPECT_EQ(texts[6], "[1.0, 2.5]");
+    // Each text parses back to the original value, to the bit (and type: 3.0 stays a float).
+    for (std::size_t i = 0; i < texts.size(); ++i)
+        EXPECT_TRUE(toml::parse("w = " + texts[i]) == toml::parse("w = " + literals[i])) << texts[i] << " vs " << literals[i];
+    EXPECT_ERROR(TomlDocument::parse("v = []", "s.toml").root().value_texts("v"), "at least one value");
+}

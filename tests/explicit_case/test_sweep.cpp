@@ -1,0 +1,227 @@
+// fem-sweep's design sweeps (lib/explicit_case/sweep.hpp): the cases of a sweep file, each case the
+// same run as the case file with its values set (fem-explicit --set), the table against the closed
+// form of the bar wave, failed cases as rows, resuming, and bad sweeps refused before anything runs.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+
+#include <unistd.h>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "check/build_paths.hpp"
+#include "core/error.hpp"
+#include "explicit_case/case_file.hpp"
+#include "explicit_case/sweep.hpp"
+
+namespace fs = std::filesystem;
+using namespace fem;
+using namespace fem::explicit_case;
+
+namespace {
+
+const fs::path kCaseFiles = check::source_dir() / "tests/explicit_case/cases";
+
+fs::path sweep_scratch(const std::string& name) {
+    const fs::path p = fs::temp_directory_path() / ("fem_sweep_" + std::to_string(::getpid())) / name;
+    fs::remove_all(p);
+    fs::create_directories(p);
+    return p;
+}
+
+std::string file_text(const fs::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+// A sweep file in `dir` over the bar wave case (copied beside it) with the given parameter and result text.
+fs::path sweep_file(const fs::path& dir, const std::string& body) {
+    fs::copy_file(kCaseFiles / "bar_wave.toml", dir / "bar_wave.toml", fs::copy_options::overwrite_existing);
+    std::ofstream(dir / "sweep.toml") << "case = \"bar_wave.toml\"\n" << body;
+    return dir / "sweep.toml";
+}
+
+std::string sweep_error(const std::function<void()>& f) {
+    try {
+        f();
+    } catch (const InputError& e) {
+        return e.what();
+    }
+    return "no error";
+}
+
+}  // namespace
+
+TEST(SweepFile, GridCasesVaryTheLastParameterFastestAndListCasesGoTogether) {
+    const fs::path dir = sweep_scratch("grid");
+    const Sweep grid = read_sweep(sweep_file(dir, R"(
+[[parameter]]
+key = "material[steel].E"
+values = [70e9, 210e9]
+[[parameter]]
+key = "control.end_time"
+values = [1e-4, 2e-4, 3e-4]
+)"));
+    ASSERT_EQ(grid.size(), 6);
+    EXPECT_EQ(grid.settings(0)[0].value, "7e+10");
+    EXPECT_EQ(grid.settings(0)[1].value, "1e-04");  // the shortest text that reads back to the same double
+    EXPECT_EQ(grid.settings(2)[1].value, "3e-04");
+    EXPECT_EQ(grid.settings(3)[0].value, "2.1e+11");
+    EXPECT_EQ(grid.settings(3)[1].value, "1e-04");
+    EXPECT_EQ(grid.case_folder(5), dir / "sweep_results" / "case-5");
+    EXPECT_NE(grid.settings(4)[1].origin.find("sweep.toml:7: parameter[1] (control.end_time = 2e-04, case 4)"), std::string::npos)
+        << grid.settings(4)[1].origin;
+
+    const Sweep list = read_sweep(sweep_file(dir, R"(
+combine = "list"
+folder = "out"
+[[parameter]]
+key = "part[bar].elements"
+values = [[10, 1, 1], [20, 1, 1], [40, 1, 1], [80, 1, 1], [160, 1, 1], [320, 1, 1], [640, 1, 1], [1280, 1, 1], [2560, 1, 1], [5120, 1, 1], [10240, 1, 1]]
+[[parameter]]
+key = "output.node[0].name"
+values = ["a", "b", "c", "d", "e", "f", "g", "h", "i", "j", "k"]
+)"));
+    ASSERT_EQ(list.size(), 11);
+    EXPECT_EQ(list.settings(10)[0].value, "[10240, 1, 1]");
+    EXPECT_EQ(list.shown_values(10)[1], "k");  // a string shown without its quotes
+    EXPECT_EQ(list.case_folder(3), dir / "out" / "case-03");  // zero-padded to the largest number's digits
+}
+
+TEST(SweepFile, BadSweepsAreRefusedWithTheirLine) {
+    const fs::path dir = sweep_scratch("bad-file");
+    EXPECT_NE(sweep_error([&] { read_sweep(sweep_file(dir, "combine = \"list\"\n[[parameter]]\nkey = \"a\"\nvalues = [1, 2]\n[[parameter]]\n"
+                                                   "key = \"b\"\nvalues = [1]\n")); })
+                  .find("sweep.toml:8: parameter[1].values: combine = \"list\" takes the k-th value of every parameter together: 1 "
+                        "values here, 2 in parameter[0]"),
+              std::string::npos);
+    EXPECT_NE(sweep_error([&] { read_sweep(sweep_file(dir, "[[parameter]]\nkey = \"a\"\nvalues = [1]\n[[parameter]]\nkey = \"a\"\nvalues = [2]\n")); })
+                  .find("sweep.toml:6: parameter[1].key: 'a' is swept twice"),
+              std::string::npos);
+    EXPECT_NE(sweep_error([&] { read_sweep(sweep_file(dir, "combine = \"grid\"\n")); }).find("at least one [[parameter]]"), std::string::npos);
+    EXPECT_NE(sweep_error([&] { read_sweep(sweep_file(dir, "[[parameter]]\nkey = \"a\"\nvalue = [1]\n")); }).find("did you mean 'values'?"),
+              std::string::npos);
+    EXPECT_NE(sweep_error([&] {
+                  read_sweep(sweep_file(dir, "[[parameter]]\nkey = \"a\"\nvalues = [1]\n[[result]]\ncolumn = \"x\"\nreduce = \"mx\"\n"));
+              }).find("did you mean 'max'?"),
+              std::string::npos);
+}
+
+TEST(Sweep, EachCaseIsTheCaseFileWithItsValuesSetAndMatchesTheClosedForm) {
+    const fs::path dir = sweep_scratch("bar");
+    fs::copy_file(kCaseFiles / "bar_wave.toml", dir / "bar_wave.toml");
+    fs::copy_file(kCaseFiles / "bar_wave_sweep.toml", dir / "bar_wave_sweep.toml");
+    const Sweep sweep = read_sweep(dir / "bar_wave_sweep.toml");
+    ASSERT_EQ(sweep.size(), 4);
+    const SweepOutcome out = run_sweep(sweep, {.jobs = 2, .quiet = true});
+    ASSERT_TRUE(out.all_ok()) << out.table;
+    const std::size_t peak = sweep_solver_columns().size();  // the first [[result]]
+    for (int k = 0; k < 4; ++k) {
+        // The closed form of the free end at the run's end time T: 2 v0 (T - L/c).
+        const double E = k < 2 ? 70e9 : 210e9, v0 = k % 2 == 0 ? 1.0 : 2.0;
+        const double T = out.rows[k].numbers[1], c = std::sqrt(E / 7800.0);
+        const double exact = 2.0 * v0 * (T - 1.0 / c);
+        EXPECT_NEAR(out.rows[k].numbers[peak], exact, 0.01 * exact) << "case " << k;
+        // The same run as the case file read with the case's settings (fem-explicit --set): the same bytes.
+        ExplicitCase single = read_case(dir / "bar_wave.toml", sweep.settings(k));
+        single.output.folder = dir / fmt::format("single-{}", k);
+        ASSERT_TRUE(run_case(single, true).healthy());
+        EXPECT_EQ(file_text(single.output.folder / "histories.dat"), file_text(sweep.case_folder(k) / "histories.dat")) << "case " << k;
+    }
+    // The table files: a header and one row per case.
+    const std::string csv = file_text(sweep.folder / "sweep.csv");
+    EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 5);
+    EXPECT_EQ(csv.substr(0, csv.find('\n')),
+              "case,material[steel].E,boundary[0].velocity,status,steps,end_time_s,wall_s,element_cycles_per_s,"
+              "energy_balance_relative_error,hourglass_fraction_of_internal,free end peak ux,final kinetic energy");
+    const nlohmann::json j = nlohmann::json::parse(file_text(sweep.folder / "sweep.json"));
+    ASSERT_EQ(j.at("cases").size(), 4u);
+    EXPECT_EQ(j["cases"][3]["settings"]["material[steel].E"], "2.1e+11");
+    EXPECT_EQ(j["cases"][3]["values"]["free end peak ux"].get<double>(), out.rows[3].numbers[peak]);
+    EXPECT_TRUE(fs::exists(sweep.folder / "sweep.dat"));
+}
+
+TEST(Sweep, FailedCasesAreRowsAndAResumeKeepsCompletedCases) {
+    const fs::path dir = sweep_scratch("resume");
+    const Sweep sweep = read_sweep(sweep_file(dir, R"(
+combine = "list"
+[[parameter]]
+key = "boundary[0].velocity"
+values = [[1.0, 0.0, 0.0], [20000.0, 0.0, 0.0], [2.0, 0.0, 0.0]]
+[[parameter]]
+key = "control.end_time"
+values = [1e-4, 1e-4, 2e-4]
+)"));
+    const SweepOutcome first = run_sweep(sweep, {.jobs = 1, .quiet = true});
+    EXPECT_FALSE(first.all_ok());
+    EXPECT_EQ(first.rows[0].status, "ok");
+    EXPECT_EQ(first.rows[1].status, "unstable");  // 20 km/s inverts the struck element at once
+    EXPECT_NE(first.rows[1].message.find("went unstable"), std::string::npos) << first.rows[1].message;
+    EXPECT_TRUE(std::isnan(first.rows[1].numbers[0]));
+    EXPECT_EQ(first.rows[2].status, "ok");
+    EXPECT_NE(first.table.find("case 1 unstable: explicit run"), std::string::npos) << first.table;
+
+    // Resumed: nothing runs again (each case's record and files untouched), the same rows.
+    const std::string record = file_text(sweep.case_folder(2) / "sweep-case.json");
+    const auto written = fs::last_write_time(sweep.case_folder(2) / "histories.dat");
+    const SweepOutcome again = run_sweep(sweep, {.jobs = 1, .quiet = true, .resume = true});
+    for (int k = 0; k < 3; ++k) {
+        EXPECT_EQ(again.rows[k].status, first.rows[k].status);
+        for (std::size_t i = 0; i < first.rows[k].numbers.size(); ++i)
+            if (!std::isnan(first.rows[k].numbers[i])) {
+                EXPECT_EQ(again.rows[k].numbers[i], first.rows[k].numbers[i]);
+            }
+    }
+    EXPECT_EQ(file_text(sweep.case_folder(2) / "sweep-case.json"), record);
+    EXPECT_EQ(fs::last_write_time(sweep.case_folder(2) / "histories.dat"), written);
+
+    // A case whose settings changed runs again; a smaller sweep into the folder removes the cases it no longer has.
+    const Sweep smaller = read_sweep(sweep_file(dir, R"(
+combine = "list"
+[[parameter]]
+key = "boundary[0].velocity"
+values = [[1.0, 0.0, 0.0], [3.0, 0.0, 0.0]]
+[[parameter]]
+key = "control.end_time"
+values = [1e-4, 1e-4]
+)"));
+    const SweepOutcome third = run_sweep(smaller, {.jobs = 1, .quiet = true, .resume = true});
+    EXPECT_TRUE(third.all_ok()) << third.table;
+    EXPECT_FALSE(fs::exists(sweep.case_folder(2)));
+    EXPECT_EQ(fs::last_write_time(smaller.case_folder(0) / "histories.dat"), fs::last_write_time(sweep.case_folder(0) / "histories.dat"));
+}
+
+TEST(Sweep, ASettingTheCaseRefusesStopsTheSweepBeforeAnythingRuns) {
+    const fs::path dir = sweep_scratch("refused");
+    const Sweep sweep = read_sweep(sweep_file(dir, R"(
+[[parameter]]
+key = "material[steel].E"
+values = [210e9, -1.0]
+)"));
+    EXPECT_EQ(sweep_error([&] { run_sweep(sweep, {.quiet = true}); }),
+              fmt::format("{}:4: parameter[0] (material[steel].E = -1.0, case 1): material[0].E: must be a finite number > 0, got -1",
+                          (dir / "sweep.toml").string()));
+    EXPECT_FALSE(fs::exists(sweep.folder));  // nothing ran, nothing written
+
+    // A result column the run does not write names the result and the file's columns.
+    const Sweep bad_column = read_sweep(sweep_file(dir, R"(
+[[parameter]]
+key = "material[steel].E"
+values = [210e9]
+[[result]]
+column = "free_end_uy"
+reduce = "max"
+)"));
+    const std::string message = sweep_error([&] { run_sweep(bad_column, {.quiet = true}); });
+    EXPECT_NE(message.find("result 'max free_end_uy': histories.dat has no column 'free_end_uy' (did you mean 'free_end_uy_m'?)"),
+              std::string::npos)
+        << message;
+    EXPECT_FALSE(fs::exists(bad_column.folder));  // found before anything ran
+}
