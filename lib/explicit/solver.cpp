@@ -224,6 +224,20 @@ void ExplicitModel::set_initial_angular_velocity(const std::vector<int>& nodes, 
 // RunSummary
 // ===================================================================================================
 
+namespace {
+// A hexahedron's two lengths at its coordinates x: the bulk viscosity's, cbrt(V), and its Table 2-1
+// step's, V / A_max (README "Flat hexahedra and bulk viscosity").
+struct HexLengths {
+    double viscous = 0.0, step = 0.0;
+    double ratio() const { return step > 0.0 ? viscous / step : 1.0; }
+};
+HexLengths hex_lengths(const std::array<Vec3, 8>& x) {
+    const std::vector<Vec3> corners(x.begin(), x.end());
+    return {std::cbrt(centre_jacobian(ElementShape::Hex8, corners) / 64.0),  // 64 V (mesh.hpp's edge sums)
+            cfl::hexahedron_length(x)};
+}
+}  // namespace
+
 std::string RunSummary::text() const {
     std::string s;
     s += fmt::format("==== explicit run '{}' summary ====\n", name);
@@ -239,6 +253,12 @@ std::string RunSummary::text() const {
         s += fmt::format("  measured stability limit of the solid elements: 2/omega_max = {:.4f} x their smallest reference step "
                          "(steps scaled)\n",
                          stability_factor);
+    if (flattest_hex_ratio > 2.0)
+        s += fmt::format("  flattest hexahedron with bulk viscosity: {}, cbrt(V) = {:.3g} x V / A_max{}\n", flattest_hex,
+                         flattest_hex_ratio,
+                         flattest_hex_ratio > 3.0 ? ": its bulk viscosity may take more of the step than Table 2-1 allows for "
+                                                    "(lib/explicit/README.md, \"Flat hexahedra and bulk viscosity\")"
+                                                  : "");
     s += fmt::format("  time step: first {:.4g} s, min {:.4g} s, max {:.4g} s; {} steps to t = {:.6g} s\n", first_dt,
                      min_dt, max_dt, steps, end_time);
     if (step_limits.size() > 1) {
@@ -325,6 +345,8 @@ nlohmann::json RunSummary::to_json() const {
              }()},
             {"step_at_end_s", step_at_end},
             {"stability_factor", stability_factor},
+            {"flattest_hex_ratio", flattest_hex_ratio},
+            {"flattest_hex", flattest_hex},
             {"mass_kg", mass},
             {"added_mass_kg", added_mass},
             {"added_mass_fraction", added_mass_fraction},
@@ -471,6 +493,21 @@ void ExplicitSolver::initialize() {
                     solid_table_dt = std::min(solid_table_dt, ref[e] * std::sqrt(f[e]));
                 }
     }
+    // The flattest hexahedron whose bulk viscosity is on (the summary's warning, README "Flat hexahedra
+    // and bulk viscosity").
+    for (const auto& g : groups)
+        if (g->block >= 0 && model_.mesh().blocks[g->block].shape == ElementShape::Hex8 && g->adds_viscous_forces()) {
+            const ElementBlock& blk = model_.mesh().blocks[g->block];
+            for (int e = 0; e < blk.size(); ++e) {
+                std::array<Vec3, 8> X;
+                const auto conn = blk.element(e);
+                for (int a = 0; a < 8; ++a) X[a] = s_.X[conn[a]];
+                if (const double r = hex_lengths(X).ratio(); r > summary_.flattest_hex_ratio) {
+                    summary_.flattest_hex_ratio = r;
+                    summary_.flattest_hex = block_element_name(g->block, e);
+                }
+            }
+        }
     for (const auto& g : groups) {
         g->initialize(s_);  // history variables (shell stresses) start from this state
         summary_.added_mass += g->add_lumped_mass(s_);
@@ -872,18 +909,17 @@ void ExplicitSolver::unstable(const std::string& why, int bad_group, int bad_ele
     // element's volume (LS-DYNA's length for solids), while its Table 2-1 step allows for damping over
     // the step's own length V / A_max only; far apart, the step leaves no room for that damping
     // (README "Flat hexahedra and bulk viscosity": a bar of 1.25 x 20 x 20 mm elements at dt_scale 0.9).
-    double flatness = 1.0, viscous_length = 0.0, step_length = 0.0;  // cbrt(V) / (V / A_max), the two lengths
+    HexLengths lengths;
+    double flatness = 1.0;  // cbrt(V) / (V / A_max) of a hexahedron with bulk viscosity
     if (block >= 0 && mesh.blocks[block].shape == ElementShape::Hex8) {
         bool viscous = false;
         for (const auto& g : model_.groups())
             if (g->block == block) viscous = g->adds_viscous_forces();
         std::array<Vec3, 8> X;
-        std::vector<Vec3> corners;
         const auto conn = mesh.blocks[block].element(element);
-        for (int a = 0; a < 8; ++a) corners.push_back(X[a] = s_.X[conn[a]]);
-        step_length = cfl::hexahedron_length(X);
-        viscous_length = std::cbrt(centre_jacobian(ElementShape::Hex8, corners) / 64.0);  // 64 V (mesh.hpp's edge sums)
-        if (viscous && step_length > 0.0) flatness = viscous_length / step_length;
+        for (int a = 0; a < 8; ++a) X[a] = s_.X[conn[a]];
+        lengths = hex_lengths(X);
+        if (viscous) flatness = lengths.ratio();
     }
     // Why, most likely: a fixed step above the critical one (Eq 2-27), else a deformation the mesh
     // cannot follow: an inverted element, or elements collapsing faster than the step adapts.
@@ -905,7 +941,7 @@ void ExplicitSolver::unstable(const std::string& why, int bad_group, int bad_ele
                             "that step leaves no room for the damping (the element's volume is {:.3g} x its initial "
                             "one: no large deformation); lower the step scale (fem-explicit: [control] dt_scale) or "
                             "use less flat elements",
-                            viscous_length, flatness, step_length, ratio);
+                            lengths.viscous, flatness, lengths.step, ratio);
     else
         cause = fmt::format("a deformation the mesh cannot follow (the element's volume is now {:.3g} x its initial "
                             "one): {}", ratio, too_large);

@@ -361,6 +361,11 @@ struct RunSummary {
     int controlling_block = -1, controlling_element = -1;
     double controlling_dt = 0;   // its critical step (before the 0.9 and the stability factor)
     double stability_factor = 1; // measured 2/omega_max over the smallest solid Table 2-1 step (solid groups; may exceed 1 for tetrahedra)
+    /// The flattest hexahedron with bulk viscosity: the viscosity's length cbrt(V) over its Table 2-1
+    /// length V / A_max (1 for a cube; README "Flat hexahedra and bulk viscosity": above ~3 the step
+    /// may not allow for the damping), and which element (0 and empty: no such hexahedron).
+    double flattest_hex_ratio = 0;
+    std::string flattest_hex;
     double mass = 0, added_mass = 0, added_mass_fraction = 0;
     // What limits the step at the end (ExplicitSolver::choose_dt): the elements' stable step and each
     // force provider's (contact penalties, ties), combined as 1/dt^2 = sum 1/dt_i^2 before the

@@ -264,15 +264,15 @@ SweepOutcome run_sweep(const Sweep& s, const SweepOptions& options) {
         cases.push_back(std::move(c));
     }
     // Every result's column must be one the runs write (history_columns: the case's [[output.node]]s).
-    for (const SweepResult& r : s.results) {
-        const ExplicitCase& c = cases.front();
-        if (!r.phase.empty() && std::none_of(c.phases.begin(), c.phases.end(), [&](const Phase& p) { return p.name == r.phase; }))
-            throw InputError(fmt::format("{}:{}: result '{}': the case has no phase '{}'", s.source, r.line, r.name, r.phase));
-        const std::vector<std::string> columns = r.file == "histories" ? history_columns(c) : energy_columns();
-        if (std::find(columns.begin(), columns.end(), r.column) == columns.end())
-            throw InputError(fmt::format("{}:{}: result '{}': {}.dat has no column '{}'{}; its columns: {}", s.source, r.line, r.name,
-                                         r.file, r.column, input::did_you_mean(r.column, columns), fmt::join(columns, ", ")));
-    }
+    for (const SweepResult& r : s.results)
+        for (const ExplicitCase& c : cases) {
+            if (!r.phase.empty() && std::none_of(c.phases.begin(), c.phases.end(), [&](const Phase& p) { return p.name == r.phase; }))
+                throw InputError(fmt::format("{}:{}: result '{}': the case has no phase '{}'", s.source, r.line, r.name, r.phase));
+            const std::vector<std::string> columns = r.file == "histories" ? history_columns(c) : energy_columns();
+            if (std::find(columns.begin(), columns.end(), r.column) == columns.end())
+                throw InputError(fmt::format("{}:{}: result '{}': {}.dat has no column '{}'{}; its columns: {}", s.source, r.line,
+                                             r.name, r.file, r.column, input::did_you_mean(r.column, columns), fmt::join(columns, ", ")));
+        }
     std::error_code ec;
     std::filesystem::create_directories(s.folder, ec);
     if (ec) throw InputError(fmt::format("{}: the sweep's folder '{}' cannot be created: {}", s.source, s.folder.string(), ec.message()));
@@ -309,8 +309,8 @@ SweepOutcome run_sweep(const Sweep& s, const SweepOptions& options) {
                 }
             } catch (const Interrupted&) {
                 throw;
-            } catch (const SolverError& e) {
-                row.status = "unstable";
+            } catch (const SolverError& e) {  // an unstable run, or another failure of the solver
+                row.status = std::string(e.what()).find("went unstable") != std::string::npos ? "unstable" : "error";
                 row.message = one_line(e.what());
             } catch (const std::exception& e) {  // an input error found while building (a mesh file), or another
                 row.status = "error";

@@ -469,8 +469,9 @@ std::string toml_text(const toml::node& n) {
     if (auto s = n.as_string()) {
         std::string t = "\"";
         for (char c : s->get()) {
-            if (c == '"' || c == '\\') t += '\\';
-            if (c == '\n') t += "\\n";
+            const auto u = static_cast<unsigned char>(c);
+            if (c == '"' || c == '\\') t += fmt::format("\\{}", c);
+            else if ((u < 0x20 && c != '\t') || u == 0x7f) t += fmt::format("\\u{:04X}", u);  // TOML's escapes
             else t += c;
         }
         return t + "\"";

@@ -10,6 +10,7 @@
 #include <fstream>
 #include <iterator>
 #include <string>
+#include <tuple>
 
 #include <unistd.h>
 
@@ -224,4 +225,23 @@ reduce = "max"
               std::string::npos)
         << message;
     EXPECT_FALSE(fs::exists(bad_column.folder));  // found before anything ran
+}
+
+TEST(Sweep, TheSummaryNamesTheFlattestHexahedronWithBulkViscosity) {
+    // bar_wave's 10 x 20 x 20 mm elements: cbrt(V) = 15.87 mm over V / A_max = 10 mm, no warning; cut into
+    // 1.25 mm slabs (800 elements) the ratio is 6.35 and the summary warns (README "Flat hexahedra and bulk viscosity").
+    const fs::path dir = sweep_scratch("flat");
+    for (const auto& [elements, ratio, warned] : {std::tuple{"[100, 1, 1]", std::cbrt(4000.0) / 10.0, false},
+                                                  std::tuple{"[800, 1, 1]", std::cbrt(500.0) / 1.25, true}}) {
+        ExplicitCase c = read_case(kCaseFiles / "bar_wave.toml", {{"part[bar].elements", elements, "test"},
+                                                                 {"control.end_time", "1e-6", "test"},
+                                                                 {"control.dt_scale", "0.5", "test"}});
+        c.output.folder = dir / elements;
+        const CaseOutcome o = run_case(c, true);
+        const nlohmann::json run = nlohmann::json::parse(file_text(c.output.folder / "run.json"));
+        EXPECT_NEAR(run.at("flattest_hex_ratio").get<double>(), ratio, 1e-9 * ratio) << elements;
+        EXPECT_EQ(o.summary.find("flattest hexahedron with bulk viscosity: part 'bar' hex8 element") != std::string::npos, warned)
+            << o.summary;
+        EXPECT_EQ(o.summary.find("may take more of the step than Table 2-1 allows for") != std::string::npos, warned);
+    }
 }

@@ -294,7 +294,7 @@ TEST(Settings, TheReaderNamesTheSettingNotALineOfTheFile) {
 
 TEST(Settings, ValueTextsParseBackToTheSameValues) {
     const std::vector<std::string> literals{"0.1",  "7e10",          "3.0",        "-2",   "true", "\"a \\\"b\\\"\"",
-                                            "[1.0, 2.5]", "{ x = 1.5e-300 }", "1e-5"};
+                                            "[1.0, 2.5]", "{ x = 1.5e-300 }", "1e-5", "\"tab\\there\\r\\n\\u0001\""};
     std::string array = "v = [";
     for (std::size_t i = 0; i < literals.size(); ++i) array += (i ? ", " : "") + literals[i];
     const std::vector<std::string> texts = TomlDocument::parse(array + "]", "sweep.toml").root().value_texts("v");
