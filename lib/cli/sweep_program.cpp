@@ -1,7 +1,7 @@
 // fem-sweep: a design study over a fem-explicit case file (lib/explicit_case/sweep.hpp; the format:
 // lib/explicit_case/CASE_FILE.md, "Sweeps").
 //
-//   fem-sweep sweep.toml [--output DIR] [--jobs N] [--resume] [--quiet]
+//   fem-sweep sweep.toml [--output DIR] [--jobs N] [--resume] [--list] [--quiet]
 //   mpirun -n 4 build/bin/mpi/fem-sweep sweep.toml      # the cases across machines (README.md)
 //
 // Runs every case of the sweep (the case file with the [[parameter]] values set) into DIR/case-<k>/,
@@ -9,7 +9,8 @@
 // OpenMP threads), and writes DIR/sweep.csv, sweep.dat, sweep.json and summary.txt: one row per case
 // with its values, status, the solver's numbers and the [[result]]s. --resume keeps the cases a
 // killed or earlier run of the same sweep completed (same settings) and runs the others; with
-// every case completed it only tabulates again (a changed [[result]] list).
+// every case completed it only tabulates again (a changed [[result]] list). --list reads every case
+// and lists them (values, folders) without running anything.
 // Exit status: 0 every case ran healthy; 1 some case was unhealthy, unstable or could not be built
 // (the table says which and why); 2 bad input (a parameter's key or value the case refuses: nothing
 // runs); 4 other errors; 130 Ctrl-C (the completed cases are kept for --resume).
@@ -27,10 +28,10 @@ namespace fem::cli {
 
 int sweep_program(int argc, char** argv) {
     return fem::run_program("fem-sweep", [&]() {
-        constexpr const char* usage = "fem-sweep SWEEP.toml [--output DIR] [--jobs N] [--resume] [--quiet]";
+        constexpr const char* usage = "fem-sweep SWEEP.toml [--output DIR] [--jobs N] [--resume] [--list] [--quiet]";
         std::string file, output;
         explicit_case::SweepOptions options;
-        input::Arguments args(argc, argv, {"--help", "--output", "--jobs", "--resume", "--quiet"});
+        input::Arguments args(argc, argv, {"--help", "--output", "--jobs", "--resume", "--list", "--quiet"});
         while (args.next()) {
             if (args.is("--help") || args.is("-h")) {
                 std::cout << "usage: " << usage << "\n"
@@ -41,6 +42,7 @@ int sweep_program(int argc, char** argv) {
                              "--output DIR: instead of the sweep file's folder key (default <stem>_results beside it).\n"
                              "--jobs N: cases at once (default FEM_JOBS, else the cores).\n"
                              "--resume: keep the cases an earlier run of the same sweep completed; run the others.\n"
+                             "--list: read every case and list the cases (values, folders); run nothing.\n"
                              "Under mpirun (build/bin/mpi/fem-sweep) the cases are dealt to the ranks.\n";
                 return 0;
             } else if (args.is("--output")) {
@@ -49,6 +51,8 @@ int sweep_program(int argc, char** argv) {
                 options.jobs = args.integer<int>({.min = 1});
             } else if (args.is("--resume")) {
                 options.resume = true;
+            } else if (args.is("--list")) {
+                options.list = true;
             } else if (args.is("--quiet")) {
                 options.quiet = true;
             } else {
@@ -61,7 +65,7 @@ int sweep_program(int argc, char** argv) {
         if (!output.empty()) sweep.folder = output;
         const explicit_case::SweepOutcome outcome = explicit_case::run_sweep(sweep, options);
         if (check::ranks().rank() == 0) std::cout << outcome.table << std::flush;
-        return outcome.all_ok() ? 0 : 1;
+        return options.list || outcome.all_ok() ? 0 : 1;
     });
 }
 

@@ -241,6 +241,24 @@ std::string one_line(std::string s) {
 // A number as the table shows it (10 significant digits; empty for none).
 std::string number_text(double v) { return std::isfinite(v) ? fmt::format("{:.10g}", v) : ""; }
 
+// Rows of text in columns two spaces apart (the first row the header).
+std::string aligned_table(const std::vector<std::vector<std::string>>& lines) {
+    std::vector<std::size_t> width;
+    for (const auto& line : lines)
+        for (std::size_t i = 0; i < line.size(); ++i) {
+            if (width.size() <= i) width.push_back(0);
+            width[i] = std::max(width[i], line[i].size());
+        }
+    std::string out;
+    for (const auto& line : lines) {
+        std::string t;
+        for (std::size_t i = 0; i < line.size(); ++i) t += fmt::format("{}{:<{}}", i ? "  " : "", line[i], width[i]);
+        while (!t.empty() && t.back() == ' ') t.pop_back();
+        out += t + "\n";
+    }
+    return out;
+}
+
 std::string csv_field(const std::string& s) {
     if (s.find_first_of(",\"\n") == std::string::npos) return s;
     std::string q = "\"";
@@ -273,6 +291,22 @@ SweepOutcome run_sweep(const Sweep& s, const SweepOptions& options) {
                 throw InputError(fmt::format("{}:{}: result '{}': {}.dat has no column '{}'{}; its columns: {}", s.source, r.line,
                                              r.name, r.file, r.column, input::did_you_mean(r.column, columns), fmt::join(columns, ", ")));
         }
+    if (options.list) {  // the cases as read, nothing run
+        SweepOutcome listing;
+        std::vector<std::vector<std::string>> lines{{"case"}};
+        for (const auto& p : s.parameters) lines[0].push_back(p.key);
+        lines[0].push_back("folder");
+        for (int k = 0; k < n; ++k) {
+            std::vector<std::string> line{std::to_string(k)};
+            for (const auto& v : s.shown_values(k)) line.push_back(v);
+            line.push_back(s.case_folder(k).string());
+            lines.push_back(std::move(line));
+        }
+        listing.table = fmt::format("fem-sweep: {} cases of {} ({}), each read; nothing run\n", n, s.case_file.string(),
+                                    s.grid ? "grid" : "list") +
+                        aligned_table(lines);
+        return listing;
+    }
     std::error_code ec;
     std::filesystem::create_directories(s.folder, ec);
     if (ec) throw InputError(fmt::format("{}: the sweep's folder '{}' cannot be created: {}", s.source, s.folder.string(), ec.message()));
@@ -348,20 +382,10 @@ SweepOutcome run_sweep(const Sweep& s, const SweepOptions& options) {
         for (double v : out.rows[k].numbers) line.push_back(number_text(v));
         cells.push_back(std::move(line));
     }
-    std::vector<std::size_t> width(header.size());
-    for (std::size_t i = 0; i < header.size(); ++i) {
-        width[i] = header[i].size();
-        for (const auto& line : cells) width[i] = std::max(width[i], line[i].size());
-    }
-    const auto text_line = [&](const std::vector<std::string>& line) {
-        std::string t;
-        for (std::size_t i = 0; i < line.size(); ++i) t += fmt::format("{}{:<{}}", i ? "  " : "", line[i], width[i]);
-        while (!t.empty() && t.back() == ' ') t.pop_back();
-        return t + "\n";
-    };
+    std::vector<std::vector<std::string>> lines{header};
+    lines.insert(lines.end(), cells.begin(), cells.end());
     out.table = fmt::format("fem-sweep: {} cases of {} ({})\n", n, s.case_file.string(), s.grid ? "grid" : "list");
-    out.table += text_line(header);
-    for (const auto& line : cells) out.table += text_line(line);
+    out.table += aligned_table(lines);
     for (int k = 0; k < n; ++k)
         if (!out.rows[k].message.empty()) out.table += fmt::format("case {} {}: {}\n", k, out.rows[k].status, out.rows[k].message);
 

@@ -94,6 +94,7 @@ struct SweepOptions {
     int jobs = 0;         // cases at once in this process (0: check::case_jobs's default)
     bool quiet = false;   // no line per case on stderr
     bool resume = false;  // keep the cases a previous run of the same sweep completed (sweep-case.json)
+    bool list = false;    // read every case and list them (values, folder), run nothing, write nothing
 };
 
 struct SweepOutcome {
@@ -104,7 +105,8 @@ struct SweepOutcome {
 };
 
 /// Reads every case (nothing runs unless all can be read), runs them into their folders and writes
-/// the sweep's files (see the top). resume: a case whose folder holds the sweep-case.json of a
+/// the sweep's files (see the top); with options.list only the first step, the table listing the
+/// cases (rows empty). resume: a case whose folder holds the sweep-case.json of a
 /// completed run with the same settings is not run again; its row is read from its files (so a
 /// changed [[result]] list re-tabulates without running anything). Ctrl-C: fem::Interrupted after
 /// the running cases stopped; the completed cases are kept for a resume.

@@ -245,3 +245,25 @@ TEST(Sweep, TheSummaryNamesTheFlattestHexahedronWithBulkViscosity) {
         EXPECT_EQ(o.summary.find("may take more of the step than Table 2-1 allows for") != std::string::npos, warned);
     }
 }
+
+TEST(Sweep, ListReadsEveryCaseAndRunsNothing) {
+    const fs::path dir = sweep_scratch("list");
+    const Sweep sweep = read_sweep(sweep_file(dir, R"(
+[[parameter]]
+key = "material[steel].E"
+values = [70e9, 210e9]
+[[parameter]]
+key = "part[bar].elements"
+values = [[10, 1, 1], [20, 1, 1]]
+)"));
+    const SweepOutcome listing = run_sweep(sweep, {.list = true});
+    EXPECT_TRUE(listing.rows.empty());
+    EXPECT_NE(listing.table.find("4 cases of"), std::string::npos) << listing.table;
+    EXPECT_NE(listing.table.find("3     2.1e+11            [20, 1, 1]          " + sweep.case_folder(3).string()), std::string::npos)
+        << listing.table;
+    EXPECT_FALSE(fs::exists(sweep.folder));
+    // A case the list cannot read is refused as a run would be.
+    const Sweep bad = read_sweep(sweep_file(dir, "[[parameter]]\nkey = \"part[bar].elements\"\nvalues = [[10, 1, 1], [0, 1, 1]]\n"));
+    EXPECT_NE(sweep_error([&] { run_sweep(bad, {.list = true}); }).find("parameter[0] (part[bar].elements = [0, 1, 1], case 1)"),
+              std::string::npos);
+}
