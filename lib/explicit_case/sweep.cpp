@@ -46,7 +46,11 @@ std::string shown(const std::string& toml_text) {
 
 int Sweep::size() const {
     if (parameters.empty()) return 1;
-    if (!grid) return static_cast<int>(parameters.front().values.size());
+    if (!grid) {
+        std::size_t n = 1;
+        for (const auto& p : parameters) n = std::max(n, p.values.size());
+        return static_cast<int>(n);
+    }
     long long n = 1;
     for (const auto& p : parameters) n *= static_cast<long long>(p.values.size());
     return static_cast<int>(n);
@@ -56,6 +60,8 @@ namespace {
 // The index of each parameter's value in case k.
 std::vector<std::size_t> value_indices(const Sweep& s, int k) {
     std::vector<std::size_t> at(s.parameters.size(), static_cast<std::size_t>(k));
+    for (std::size_t i = 0; i < s.parameters.size(); ++i)
+        if (s.parameters[i].values.size() == 1) at[i] = 0;  // one value: the same in every case
     if (s.grid) {
         long long rest = k;
         for (std::size_t i = s.parameters.size(); i-- > 0;) {
@@ -111,13 +117,17 @@ Sweep read_sweep(const std::filesystem::path& file) {
         s.parameters.push_back(std::move(p));
     }
     if (s.parameters.empty()) root.fail("parameter", "a sweep needs at least one [[parameter]] (key and values)");
-    if (!s.grid)
-        for (std::size_t i = 1; i < s.parameters.size(); ++i)
-            if (s.parameters[i].values.size() != s.parameters[0].values.size())
+    if (!s.grid) {  // every list as long as the longest, or one value for every case
+        std::size_t longest = 0, which = 0;
+        for (std::size_t i = 0; i < s.parameters.size(); ++i)
+            if (s.parameters[i].values.size() > longest) longest = s.parameters[i].values.size(), which = i;
+        for (std::size_t i = 0; i < s.parameters.size(); ++i)
+            if (s.parameters[i].values.size() != longest && s.parameters[i].values.size() != 1)
                 root.tables("parameter")[i].fail(
                     "values", fmt::format("combine = \"list\" takes the k-th value of every parameter together: {} values here, {} in "
-                                          "parameter[0]",
-                                          s.parameters[i].values.size(), s.parameters[0].values.size()));
+                                          "parameter[{}] (one value would be used in every case)",
+                                          s.parameters[i].values.size(), longest, which));
+    }
     if (s.grid) {
         long long n = 1;
         for (const auto& p : s.parameters) n *= static_cast<long long>(p.values.size());

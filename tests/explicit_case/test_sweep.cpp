@@ -89,8 +89,12 @@ values = [[10, 1, 1], [20, 1, 1], [40, 1, 1], [80, 1, 1], [160, 1, 1], [320, 1, 
 [[parameter]]
 key = "output.node[0].name"
 values = ["a", "b", "c", "d", "e", "f", "g", "h", "i", "j", "k"]
+[[parameter]]
+key = "control.end_time"
+values = [2e-4]
 )"));
     ASSERT_EQ(list.size(), 11);
+    EXPECT_EQ(list.settings(7)[2].value, "2e-04");  // one value: every case's
     EXPECT_EQ(list.settings(10)[0].value, "[10240, 1, 1]");
     EXPECT_EQ(list.shown_values(10)[1], "k");  // a string shown without its quotes
     EXPECT_EQ(list.case_folder(3), dir / "out" / "case-03");  // zero-padded to the largest number's digits
@@ -99,9 +103,9 @@ values = ["a", "b", "c", "d", "e", "f", "g", "h", "i", "j", "k"]
 TEST(SweepFile, BadSweepsAreRefusedWithTheirLine) {
     const fs::path dir = sweep_scratch("bad-file");
     EXPECT_NE(sweep_error([&] { read_sweep(sweep_file(dir, "combine = \"list\"\n[[parameter]]\nkey = \"a\"\nvalues = [1, 2]\n[[parameter]]\n"
-                                                   "key = \"b\"\nvalues = [1]\n")); })
-                  .find("sweep.toml:8: parameter[1].values: combine = \"list\" takes the k-th value of every parameter together: 1 "
-                        "values here, 2 in parameter[0]"),
+                                                   "key = \"b\"\nvalues = [1, 2, 3]\n")); })
+                  .find("sweep.toml:5: parameter[0].values: combine = \"list\" takes the k-th value of every parameter together: 2 "
+                        "values here, 3 in parameter[1] (one value would be used in every case)"),
               std::string::npos);
     EXPECT_NE(sweep_error([&] { read_sweep(sweep_file(dir, "[[parameter]]\nkey = \"a\"\nvalues = [1]\n[[parameter]]\nkey = \"a\"\nvalues = [2]\n")); })
                   .find("sweep.toml:6: parameter[1].key: 'a' is swept twice"),
