@@ -7,7 +7,8 @@
 // Runs every case of the sweep (the case file with the [[parameter]] values set) into DIR/case-<k>/,
 // up to N at once (default: FEM_JOBS, else the cores; each case gets its share of the cores'
 // OpenMP threads), and writes DIR/sweep.csv, sweep.dat, sweep.json and summary.txt: one row per case
-// with its values, status, the solver's numbers and the [[result]]s. --resume keeps the cases a
+// with its values, status, the solver's numbers and the [[result]]s; and a figure per result,
+// DIR/sweep-<result>.svg (gnuplot, from DIR/sweep.gp). --resume keeps the cases a
 // killed or earlier run of the same sweep completed (same settings) and runs the others; with
 // every case completed it only tabulates again (a changed [[result]] list). --list reads every case
 // and lists them (values, folders) without running anything.
@@ -38,7 +39,8 @@ int sweep_program(int argc, char** argv) {
                           << "A design sweep of a fem-explicit case file: the case run once per combination of the\n"
                              "[[parameter]] values of SWEEP.toml (lib/explicit_case/CASE_FILE.md, \"Sweeps\"), each into\n"
                              "DIR/case-<k>/, and one table of every case's values, status, solver numbers and\n"
-                             "[[result]]s: DIR/sweep.csv, sweep.dat, sweep.json, summary.txt.\n"
+                             "[[result]]s: DIR/sweep.csv, sweep.dat, sweep.json, summary.txt; a figure per result,\n"
+                             "DIR/sweep-<result>.svg (gnuplot, from DIR/sweep.gp).\n"
                              "--output DIR: instead of the sweep file's folder key (default <stem>_results beside it).\n"
                              "--jobs N: cases at once (default FEM_JOBS, else the cores).\n"
                              "--resume: keep the cases an earlier run of the same sweep completed; run the others.\n"

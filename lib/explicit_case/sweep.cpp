@@ -18,6 +18,7 @@
 #include "core/progress.hpp"
 #include "explicit_case/case_file.hpp"
 #include "io/atomic_file.hpp"
+#include "io/gnuplot.hpp"
 #include "io/run_folder.hpp"
 #include "input/numbers.hpp"
 #include "io/table.hpp"
@@ -276,6 +277,86 @@ std::string csv_field(const std::string& s) {
     return q + "\"";
 }
 
+// A name for files and gnuplot columns: letters, digits, '_', '-' and '.', the rest '_'.
+std::string file_name(std::string name) {
+    for (char& c : name)
+        if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.')) c = '_';
+    return name;
+}
+
+// A string for a gnuplot script between single quotes ('' stands for ').
+std::string gnuplot_quoted(const std::string& s) {
+    std::string q = "'";
+    for (char c : s) q += c == '\'' ? std::string("''") : std::string(1, c);
+    return q + "'";
+}
+
+// sweep.gp and one SVG per [[result]] (sweep-<result>.svg): the result against the first parameter
+// whose values are numbers and differ (else against the case number), one line per combination of
+// the other parameters' values. The data are in the script, so `gnuplot sweep.gp` in the folder draws
+// the same figures again. Returns the figures' names.
+std::vector<std::string> write_plots(const Sweep& s, const std::vector<SweepRow>& rows, const std::filesystem::path& folder) {
+    const int n = s.size();
+    const std::size_t first_result = sweep_solver_columns().size();
+    int x = -1;  // the parameter on the x axis
+    for (std::size_t i = 0; i < s.parameters.size() && x < 0; ++i) {
+        std::set<double> distinct;
+        bool numeric = true;
+        for (int k = 0; k < n && numeric; ++k) {
+            const std::string t = s.shown_values(k)[i];
+            char* end = nullptr;
+            const double v = std::strtod(t.c_str(), &end);
+            numeric = !t.empty() && end == t.c_str() + t.size() && std::isfinite(v);
+            distinct.insert(v);
+        }
+        if (numeric && distinct.size() > 1) x = static_cast<int>(i);
+    }
+    // The lines: cases grouped by the values of the parameters other than x that vary.
+    std::vector<std::string> group_of(n);
+    for (int k = 0; k < n; ++k) {
+        const auto values = s.shown_values(k);
+        for (std::size_t i = 0; i < s.parameters.size(); ++i)
+            if (static_cast<int>(i) != x && s.parameters[i].values.size() > 1)
+                group_of[k] += fmt::format("{}{} = {}", group_of[k].empty() ? "" : ", ", s.parameters[i].key, values[i]);
+    }
+    std::vector<std::string> groups;
+    for (const auto& g : group_of)
+        if (std::find(groups.begin(), groups.end(), g) == groups.end()) groups.push_back(g);
+    const auto x_value = [&](int k) { return x >= 0 ? std::strtod(s.shown_values(k)[x].c_str(), nullptr) : double(k); };
+
+    std::string gp = fmt::format(
+        "# fem-sweep's figures of {} ({} cases): each [[result]] against {}, one line per combination of the\n"
+        "# other parameters. Written with sweep.csv; `gnuplot sweep.gp` in this folder draws them again.\n"
+        "if (!exists('folder')) folder = '.'\n"
+        "set terminal svg size 900,560 noenhanced font 'sans,12' background rgb 'white'\n"
+        "set grid\nset key outside bottom center horizontal font 'sans,10'\nset xlabel {}\n",
+        s.source, n, x >= 0 ? s.parameters[x].key : "the case number", gnuplot_quoted(x >= 0 ? s.parameters[x].key : "case"));
+    std::vector<std::string> figures;
+    for (std::size_t r = 0; r < s.results.size(); ++r) {
+        const std::string figure = "sweep-" + file_name(s.results[r].name) + ".svg";
+        std::string plot, data;
+        for (std::size_t g = 0; g < groups.size(); ++g) {
+            std::vector<std::pair<double, double>> points;
+            for (int k = 0; k < n; ++k)
+                if (group_of[k] == groups[g] && std::isfinite(rows[k].numbers[first_result + r]))
+                    points.emplace_back(x_value(k), rows[k].numbers[first_result + r]);
+            std::sort(points.begin(), points.end());
+            const std::string block = fmt::format("$r{}g{}", r, g);
+            data += block + " << EOD\n";
+            for (const auto& [px, py] : points) data += fmt::format("{} {}\n", px, py);
+            data += "EOD\n";
+            plot += fmt::format("{}{} using 1:2 with linespoints lw 2 pt 7 title {}", plot.empty() ? "plot " : ", \\\n     ", block,
+                                gnuplot_quoted(groups[g].empty() ? s.results[r].name : groups[g]));
+        }
+        gp += fmt::format("\n# {}\n{}set output folder.'/{}'\nset title {}\nset ylabel {}\n{}\n", s.results[r].name, data, figure,
+                          gnuplot_quoted(fmt::format("{} ({} of {})", s.results[r].name, s.results[r].reduce, s.results[r].column)),
+                          gnuplot_quoted(s.results[r].column), plot);
+        figures.push_back(figure);
+    }
+    io::write_text_file(folder / "sweep.gp", gp);
+    return figures;
+}
+
 }  // namespace
 
 // --- running ------------------------------------------------------------------------------------------
@@ -416,11 +497,6 @@ SweepOutcome run_sweep(const Sweep& s, const SweepOptions& options) {
         std::vector<double> index(n);
         for (int k = 0; k < n; ++k) index[k] = k;
         dat.add("case", index);
-        const auto column_name = [](std::string name) {
-            for (char& c : name)
-                if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.')) c = '_';
-            return name;
-        };
         for (std::size_t i = 0; i < s.parameters.size(); ++i) {
             std::vector<double> v(n);
             bool numeric = true;
@@ -430,12 +506,12 @@ SweepOutcome run_sweep(const Sweep& s, const SweepOptions& options) {
                 v[k] = std::strtod(t.c_str(), &end);
                 numeric = !t.empty() && end == t.c_str() + t.size();
             }
-            if (numeric) dat.add(column_name(s.parameters[i].key), v);
+            if (numeric) dat.add(file_name(s.parameters[i].key), v);
         }
         for (std::size_t j = 0; j < sweep_solver_columns().size() + s.results.size(); ++j) {
             std::vector<double> v(n);
             for (int k = 0; k < n; ++k) v[k] = out.rows[k].numbers[j];
-            dat.add(column_name(j < sweep_solver_columns().size() ? sweep_solver_columns()[j]
+            dat.add(file_name(j < sweep_solver_columns().size() ? sweep_solver_columns()[j]
                                                                  : s.results[j - sweep_solver_columns().size()].name),
                     v);
         }
@@ -452,6 +528,17 @@ SweepOutcome run_sweep(const Sweep& s, const SweepOptions& options) {
         }
         io::write_text_file(s.folder / "sweep.json", j.dump(2) + "\n");
         io::write_text_file(s.folder / "summary.txt", out.table);
+        // The figures: drawn by gnuplot from sweep.gp; a machine without gnuplot still gets the table.
+        if (!s.results.empty()) {
+            const std::vector<std::string> figures = write_plots(s, out.rows, s.folder);
+            try {
+                io::run_gnuplot(s.folder / "sweep.gp", {{"folder", s.folder.string()}});
+                out.table += fmt::format("figures: {}\n", fmt::join(figures, ", "));
+            } catch (const std::exception& e) {
+                out.table += fmt::format("figures: not drawn ({}); sweep.gp holds them\n", one_line(e.what()));
+            }
+            io::write_text_file(s.folder / "summary.txt", out.table);
+        }
         // Case folders of an earlier, larger sweep into this folder (they hold our sweep-case.json)
         // would read as results of this one: removed. Nothing else in the folder is touched.
         std::set<std::filesystem::path> ours;

@@ -23,7 +23,9 @@
 // Outputs in the sweep's folder (default <stem>_results beside the sweep file): case-<k>/ (the run's
 // files, as fem-explicit writes them, and sweep-case.json: the case's settings and status),
 // sweep.csv and sweep.dat (one row per case), sweep.json (the same with the settings as TOML text and
-// each case's message) and summary.txt (the table as printed). Reading is strict: every case's
+// each case's message), summary.txt (the table as printed) and a figure per [[result]],
+// sweep-<name>.svg (against the first numeric parameter, a line per combination of the others),
+// drawn by gnuplot from sweep.gp. Reading is strict: every case's
 // settings are applied and the case read before anything runs, so a key that does not exist, a
 // value the case refuses or a result column the runs do not write stops the sweep at once
 // (InputError naming the parameter or result), nothing written.

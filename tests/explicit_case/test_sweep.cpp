@@ -151,6 +151,13 @@ TEST(Sweep, EachCaseIsTheCaseFileWithItsValuesSetAndMatchesTheClosedForm) {
     EXPECT_EQ(j["cases"][3]["settings"]["material[steel].E"], "2.1e+11");
     EXPECT_EQ(j["cases"][3]["values"]["free end peak ux"].get<double>(), out.rows[3].numbers[peak]);
     EXPECT_TRUE(fs::exists(sweep.folder / "sweep.dat"));
+    // The figures: each result against Young's modulus, one line per impact velocity, drawn from sweep.gp.
+    EXPECT_NE(out.table.find("figures: sweep-free_end_peak_ux.svg, sweep-final_kinetic_energy.svg"), std::string::npos) << out.table;
+    const std::string gp = file_text(sweep.folder / "sweep.gp");
+    EXPECT_NE(gp.find("set xlabel 'material[steel].E'"), std::string::npos);
+    EXPECT_NE(gp.find("title 'boundary[0].velocity = [2.0, 0.0, 0.0]'"), std::string::npos);
+    for (const char* svg : {"sweep-free_end_peak_ux.svg", "sweep-final_kinetic_energy.svg"})
+        EXPECT_NE(file_text(sweep.folder / svg).find("</svg>"), std::string::npos) << svg;
 }
 
 TEST(Sweep, FailedCasesAreRowsAndAResumeKeepsCompletedCases) {
