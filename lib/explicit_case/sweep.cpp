@@ -221,10 +221,15 @@ void read_numbers(const Sweep& s, const ExplicitCase& c, SweepRow& row) {
 
 // sweep-case.json: a case's settings and how its run ended; a resumed sweep keeps the case when its
 // settings are the same.
-nlohmann::json case_record(const std::vector<input::Setting>& settings, const SweepRow& row) {
+// A case's settings as JSON: key -> TOML text (sweep-case.json, sweep.json).
+nlohmann::json settings_json(const std::vector<input::Setting>& settings) {
     nlohmann::json set = nlohmann::json::object();
     for (const auto& st : settings) set[st.key] = st.value;
-    return {{"settings", set}, {"status", row.status}, {"message", row.message}, {"wall_s", row.seconds}};
+    return set;
+}
+
+nlohmann::json case_record(const std::vector<input::Setting>& settings, const SweepRow& row) {
+    return {{"settings", settings_json(settings)}, {"status", row.status}, {"message", row.message}, {"wall_s", row.seconds}};
 }
 
 std::optional<SweepRow> completed_case(const std::filesystem::path& folder, const std::vector<input::Setting>& settings) {
@@ -232,8 +237,7 @@ std::optional<SweepRow> completed_case(const std::filesystem::path& folder, cons
     if (!in) return std::nullopt;
     try {
         const nlohmann::json j = nlohmann::json::parse(in);
-        SweepRow empty;
-        if (j.at("settings") != case_record(settings, empty).at("settings")) return std::nullopt;
+        if (j.at("settings") != settings_json(settings)) return std::nullopt;
         SweepRow row;
         row.status = j.at("status").get<std::string>();
         row.message = j.at("message").get<std::string>();
@@ -277,6 +281,24 @@ std::string csv_field(const std::string& s) {
     return q + "\"";
 }
 
+// Every case's shown values (Sweep::shown_values), case by case.
+std::vector<std::vector<std::string>> shown_table(const Sweep& s) {
+    std::vector<std::vector<std::string>> shown;
+    for (int k = 0; k < s.size(); ++k) shown.push_back(s.shown_values(k));
+    return shown;
+}
+
+// Parameter i's value in every case when each is a number (whole-string, input::to_real), else none.
+std::optional<std::vector<double>> numeric_values(const std::vector<std::vector<std::string>>& shown, std::size_t i) {
+    std::vector<double> v;
+    for (const auto& values : shown) {
+        const std::optional<double> x = input::to_real(values[i]);
+        if (!x) return std::nullopt;
+        v.push_back(*x);
+    }
+    return v;
+}
+
 // A name for files and gnuplot columns: letters, digits, '_', '-' and '.', the rest '_'.
 std::string file_name(std::string name) {
     for (char& c : name)
@@ -295,34 +317,29 @@ std::string gnuplot_quoted(const std::string& s) {
 // whose values are numbers and differ (else against the case number), one line per combination of
 // the other parameters' values. The data are in the script, so `gnuplot sweep.gp` in the folder draws
 // the same figures again. Returns the figures' names.
-std::vector<std::string> write_plots(const Sweep& s, const std::vector<SweepRow>& rows, const std::filesystem::path& folder) {
+std::vector<std::string> write_plots(const Sweep& s, const std::vector<std::vector<std::string>>& shown,
+                                     const std::vector<SweepRow>& rows, const std::filesystem::path& folder) {
     const int n = s.size();
     const std::size_t first_result = sweep_solver_columns().size();
     int x = -1;  // the parameter on the x axis
-    for (std::size_t i = 0; i < s.parameters.size() && x < 0; ++i) {
-        std::set<double> distinct;
-        bool numeric = true;
-        for (int k = 0; k < n && numeric; ++k) {
-            const std::string t = s.shown_values(k)[i];
-            char* end = nullptr;
-            const double v = std::strtod(t.c_str(), &end);
-            numeric = !t.empty() && end == t.c_str() + t.size() && std::isfinite(v);
-            distinct.insert(v);
+    std::vector<double> xs(n);
+    for (int k = 0; k < n; ++k) xs[k] = k;
+    for (std::size_t i = 0; i < s.parameters.size() && x < 0; ++i)
+        if (const auto v = numeric_values(shown, i);
+            v && std::all_of(v->begin(), v->end(), [](double a) { return std::isfinite(a); }) &&
+            std::set<double>(v->begin(), v->end()).size() > 1) {
+            x = static_cast<int>(i);
+            xs = *v;
         }
-        if (numeric && distinct.size() > 1) x = static_cast<int>(i);
-    }
     // The lines: cases grouped by the values of the parameters other than x that vary.
     std::vector<std::string> group_of(n);
-    for (int k = 0; k < n; ++k) {
-        const auto values = s.shown_values(k);
+    for (int k = 0; k < n; ++k)
         for (std::size_t i = 0; i < s.parameters.size(); ++i)
             if (static_cast<int>(i) != x && s.parameters[i].values.size() > 1)
-                group_of[k] += fmt::format("{}{} = {}", group_of[k].empty() ? "" : ", ", s.parameters[i].key, values[i]);
-    }
+                group_of[k] += fmt::format("{}{} = {}", group_of[k].empty() ? "" : ", ", s.parameters[i].key, shown[k][i]);
     std::vector<std::string> groups;
     for (const auto& g : group_of)
         if (std::find(groups.begin(), groups.end(), g) == groups.end()) groups.push_back(g);
-    const auto x_value = [&](int k) { return x >= 0 ? std::strtod(s.shown_values(k)[x].c_str(), nullptr) : double(k); };
 
     std::string gp = fmt::format(
         "# fem-sweep's figures of {} ({} cases): each [[result]] against {}, one line per combination of the\n"
@@ -339,7 +356,7 @@ std::vector<std::string> write_plots(const Sweep& s, const std::vector<SweepRow>
             std::vector<std::pair<double, double>> points;
             for (int k = 0; k < n; ++k)
                 if (group_of[k] == groups[g] && std::isfinite(rows[k].numbers[first_result + r]))
-                    points.emplace_back(x_value(k), rows[k].numbers[first_result + r]);
+                    points.emplace_back(xs[k], rows[k].numbers[first_result + r]);
             std::sort(points.begin(), points.end());
             const std::string block = fmt::format("$r{}g{}", r, g);
             data += block + " << EOD\n";
@@ -387,9 +404,10 @@ SweepOutcome run_sweep(const Sweep& s, const SweepOptions& options) {
         std::vector<std::vector<std::string>> lines{{"case"}};
         for (const auto& p : s.parameters) lines[0].push_back(p.key);
         lines[0].push_back("folder");
+        const std::vector<std::vector<std::string>> shown = shown_table(s);
         for (int k = 0; k < n; ++k) {
             std::vector<std::string> line{std::to_string(k)};
-            for (const auto& v : s.shown_values(k)) line.push_back(v);
+            for (const auto& v : shown[k]) line.push_back(v);
             line.push_back(s.case_folder(k).string());
             lines.push_back(std::move(line));
         }
@@ -465,10 +483,11 @@ SweepOutcome run_sweep(const Sweep& s, const SweepOptions& options) {
     header.push_back("status");
     for (const auto& c : sweep_solver_columns()) header.push_back(c);
     for (const auto& r : s.results) header.push_back(r.name);
+    const std::vector<std::vector<std::string>> shown = shown_table(s);
     std::vector<std::vector<std::string>> cells;
     for (int k = 0; k < n; ++k) {
         std::vector<std::string> line{std::to_string(k)};
-        for (const auto& v : s.shown_values(k)) line.push_back(v);
+        for (const auto& v : shown[k]) line.push_back(v);
         line.push_back(out.rows[k].status);
         for (double v : out.rows[k].numbers) line.push_back(number_text(v));
         cells.push_back(std::move(line));
@@ -497,17 +516,8 @@ SweepOutcome run_sweep(const Sweep& s, const SweepOptions& options) {
         std::vector<double> index(n);
         for (int k = 0; k < n; ++k) index[k] = k;
         dat.add("case", index);
-        for (std::size_t i = 0; i < s.parameters.size(); ++i) {
-            std::vector<double> v(n);
-            bool numeric = true;
-            for (int k = 0; k < n && numeric; ++k) {
-                const std::string t = s.shown_values(k)[i];
-                char* end = nullptr;
-                v[k] = std::strtod(t.c_str(), &end);
-                numeric = !t.empty() && end == t.c_str() + t.size();
-            }
-            if (numeric) dat.add(file_name(s.parameters[i].key), v);
-        }
+        for (std::size_t i = 0; i < s.parameters.size(); ++i)
+            if (const auto v = numeric_values(shown, i)) dat.add(file_name(s.parameters[i].key), *v);
         for (std::size_t j = 0; j < sweep_solver_columns().size() + s.results.size(); ++j) {
             std::vector<double> v(n);
             for (int k = 0; k < n; ++k) v[k] = out.rows[k].numbers[j];
@@ -519,26 +529,24 @@ SweepOutcome run_sweep(const Sweep& s, const SweepOptions& options) {
         nlohmann::json j = {{"case_file", s.case_file.string()}, {"combine", s.grid ? "grid" : "list"}, {"cases", nlohmann::json::array()}};
         for (int k = 0; k < n; ++k) {
             const SweepRow& r = out.rows[k];
-            nlohmann::json set = nlohmann::json::object(), values = nlohmann::json::object();
-            for (const auto& st : s.settings(k)) set[st.key] = st.value;
+            nlohmann::json values = nlohmann::json::object();
             for (std::size_t i = 0; i < r.numbers.size(); ++i)  // header: case, parameters, status, then the numbers
                 values[header[s.parameters.size() + 2 + i]] = std::isfinite(r.numbers[i]) ? nlohmann::json(r.numbers[i]) : nlohmann::json(nullptr);
-            j["cases"].push_back({{"case", k}, {"folder", s.case_folder(k).filename().string()}, {"settings", set},
+            j["cases"].push_back({{"case", k}, {"folder", s.case_folder(k).filename().string()}, {"settings", settings_json(s.settings(k))},
                                   {"status", r.status}, {"message", r.message}, {"wall_s", r.seconds}, {"values", values}});
         }
         io::write_text_file(s.folder / "sweep.json", j.dump(2) + "\n");
-        io::write_text_file(s.folder / "summary.txt", out.table);
         // The figures: drawn by gnuplot from sweep.gp; a machine without gnuplot still gets the table.
         if (!s.results.empty()) {
-            const std::vector<std::string> figures = write_plots(s, out.rows, s.folder);
+            const std::vector<std::string> figures = write_plots(s, shown, out.rows, s.folder);
             try {
                 io::run_gnuplot(s.folder / "sweep.gp", {{"folder", s.folder.string()}});
                 out.table += fmt::format("figures: {}\n", fmt::join(figures, ", "));
             } catch (const std::exception& e) {
                 out.table += fmt::format("figures: not drawn ({}); sweep.gp holds them\n", one_line(e.what()));
             }
-            io::write_text_file(s.folder / "summary.txt", out.table);
         }
+        io::write_text_file(s.folder / "summary.txt", out.table);
         // Case folders of an earlier, larger sweep into this folder (they hold our sweep-case.json)
         // would read as results of this one: removed. Nothing else in the folder is touched.
         std::set<std::filesystem::path> ours;

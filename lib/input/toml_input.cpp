@@ -47,9 +47,12 @@ std::string describe(const toml::node& n) {
     return "a date or time";
 }
 
+// A character of a bare TOML key (A-Za-z0-9_-).
+bool bare_key_char(char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-'; }
+
 std::string quoted_key(std::string_view key) {
     for (char c : key)
-        if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-')) return fmt::format("\"{}\"", key);
+        if (!bare_key_char(c)) return fmt::format("\"{}\"", key);
     return std::string(key);
 }
 
@@ -150,9 +153,7 @@ std::vector<KeyStep> key_steps(const Setting& s) {
             step.has_entry = true;
             i = close + 1;
         }
-        const bool bare = !step.key.empty() && std::all_of(step.key.begin(), step.key.end(), [](char c) {
-            return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-';
-        });
+        const bool bare = !step.key.empty() && std::all_of(step.key.begin(), step.key.end(), bare_key_char);
         if (!bare || (step.has_entry && step.entry.empty()))
             fail({s.origin, 0, ""}, fmt::format("key '{}' is not of the form table.key, array[index].key or array[name].key", k));
         steps.push_back(std::move(step));
@@ -168,9 +169,7 @@ toml::table setting_value(const Setting& s) {
     try {
         return toml::parse("value = " + s.value);
     } catch (const toml::parse_error&) {
-        const bool word = std::all_of(s.value.begin(), s.value.end(), [](char c) {
-            return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.' || c == '+';
-        });
+        const bool word = std::all_of(s.value.begin(), s.value.end(), [](char c) { return bare_key_char(c) || c == '.' || c == '+'; });
         if (!word)
             fail({s.origin, 0, s.key}, fmt::format("'{}' is not a TOML value (a number, true/false, \"text\", [a, b, ...] or "
                                                   "{{ key = value }})", s.value));
