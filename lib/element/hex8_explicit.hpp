@@ -189,7 +189,7 @@ void critical_time_step(const Lanes (&x)[3][8], const Lanes& trD, double wave_sp
 void gather(const double* xs, const double* Xs, const double* vs, const std::array<int, 8>* conn, int lanes,
             Lanes (&x)[3][8], Lanes (&u)[3][8], Lanes (&v)[3][8]);
 
-/// Convenience overloads on an array of points (tests).
+/// Convenience overloads on an array of points (tests; the solver's flattest-hexahedron survey).
 double exact_volume(const std::array<Vec3, 8>& x);
 double characteristic_length(const std::array<Vec3, 8>& x);
 

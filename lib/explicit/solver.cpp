@@ -19,6 +19,7 @@
 #include "core/error.hpp"
 #include "core/progress.hpp"
 #include "element/critical_time_step.hpp"
+#include "element/hex8_explicit.hpp"
 #include "explicit/node_update.hpp"
 #include "explicit/parallel.hpp"
 #include "io/hdf5.hpp"
@@ -232,9 +233,7 @@ struct HexLengths {
     double ratio() const { return step > 0.0 ? viscous / step : 1.0; }
 };
 HexLengths hex_lengths(const std::array<Vec3, 8>& x) {
-    const std::vector<Vec3> corners(x.begin(), x.end());
-    return {std::cbrt(centre_jacobian(ElementShape::Hex8, corners) / 64.0),  // 64 V (mesh.hpp's edge sums)
-            cfl::hexahedron_length(x)};
+    return {std::cbrt(hex8::exact_volume(x)), cfl::hexahedron_length(x)};  // the volume the Table 2-1 length divides
 }
 }  // namespace
 
