@@ -130,6 +130,10 @@ public:
     /// n times (v(n-1/2) + v(n+1/2))/2); for other groups it books viscous_power x dt (first order:
     /// a few % to tens of % off under strong bulk viscosity, tests/explicit).
     virtual bool adds_viscous_forces() const { return false; }
+    /// C1, the linear coefficient of the bulk viscosity in the group's Table 2-1 step (Q = C1 c + ...);
+    /// 0 when the group has no bulk viscosity. The solver's flat-hexahedron survey reads it
+    /// (cfl::flat_hexahedron_step_factor).
+    virtual double bulk_viscosity_linear() const { return 0.0; }
     /// Scales the group's critical steps by r (the solver's measured stability factor, <= 1),
     /// applied before any stiffness-damping reduction of the step. Returns false when the group
     /// does not support it: the solver then multiplies the step the group returns by r.

@@ -39,6 +39,9 @@ public:
     bool adds_viscous_forces() const override {
         return kernel_material_.bulk_viscosity || kernel_material_.rayleigh_beta > 0.0;
     }
+    double bulk_viscosity_linear() const override {
+        return kernel_material_.bulk_viscosity ? kernel_material_.bulk.linear : 0.0;
+    }
 
     const ElasticMaterial& material() const { return material_; }
     const hex8::Hex8Reference& reference(int e) const { return refs_[e]; }

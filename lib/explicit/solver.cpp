@@ -235,6 +235,10 @@ struct HexLengths {
 HexLengths hex_lengths(const std::array<Vec3, 8>& x) {
     return {std::cbrt(hex8::exact_volume(x)), cfl::hexahedron_length(x)};  // the volume the Table 2-1 length divides
 }
+/// A flat hexahedron's damped step limit within this factor of the run's step bound is warned of: the
+/// model (cfl::flat_hexahedron_step_factor) put two of the 63 measured cases on the wrong side of its
+/// boundary, each within 0.3 % of it.
+constexpr double kFlatHexWarnMargin = 1.03;
 }  // namespace
 
 std::string RunSummary::text() const {
@@ -252,12 +256,12 @@ std::string RunSummary::text() const {
         s += fmt::format("  measured stability limit of the solid elements: 2/omega_max = {:.4f} x their smallest reference step "
                          "(steps scaled)\n",
                          stability_factor);
-    if (flattest_hex_ratio > 2.0)
-        s += fmt::format("  flattest hexahedron with bulk viscosity: {}, cbrt(V) = {:.3g} x V / A_max{}\n", flattest_hex,
-                         flattest_hex_ratio,
-                         flattest_hex_ratio > 3.0 ? ": its bulk viscosity may take more of the step than Table 2-1 allows for "
-                                                    "(lib/explicit/README.md, \"Flat hexahedra and bulk viscosity\")"
-                                                  : "");
+    if (!flat_hex.empty()) {
+        s += fmt::format("  flat hexahedron with bulk viscosity nearest its damped step limit: {}, cbrt(V) = {:.3g} x V / A_max, "
+                         "limit {:.3g} x the run's step bound\n",
+                         flat_hex, flat_hex_ratio, flat_hex_margin);
+        if (!flat_hex_warning.empty()) s += "    " + flat_hex_warning + "\n";
+    }
     s += fmt::format("  time step: first {:.4g} s, min {:.4g} s, max {:.4g} s; {} steps to t = {:.6g} s\n", first_dt,
                      min_dt, max_dt, steps, end_time);
     if (step_limits.size() > 1) {
@@ -344,8 +348,9 @@ nlohmann::json RunSummary::to_json() const {
              }()},
             {"step_at_end_s", step_at_end},
             {"stability_factor", stability_factor},
-            {"flattest_hex_ratio", flattest_hex_ratio},
-            {"flattest_hex", flattest_hex},
+            {"flat_hex", flat_hex},
+            {"flat_hex_ratio", flat_hex_ratio},
+            {"flat_hex_margin", flat_hex_margin},
             {"mass_kg", mass},
             {"added_mass_kg", added_mass},
             {"added_mass_fraction", added_mass_fraction},
@@ -474,6 +479,10 @@ void ExplicitSolver::initialize() {
     }
     part_int_.assign(summary_.energy.parts.size(), 0.0);
     part_hg_.assign(summary_.energy.parts.size(), 0.0);
+    // Each solid element's Table 2-1 step on the reference, with its mass scaling, and the same in
+    // compression (the bulk viscosity's C1 term, Q = C1 c): the flat-hexahedron survey below.
+    std::vector<std::vector<double>> scaled_ref(groups.size());
+    double compressed_table_dt = std::numeric_limits<double>::infinity();
     for (std::size_t gi = 0; gi < groups.size(); ++gi) {
         auto& g = groups[gi];
         const std::vector<double> ref = g->reference_time_steps();
@@ -485,28 +494,56 @@ void ExplicitSolver::initialize() {
             g->set_mass_scaling(f);
         }
         // Solid: no rotational DOFs and a critical step (hexahedra, tetrahedra; not beams, point masses).
-        if (!g->needs_rotations())
+        if (!g->needs_rotations()) {
+            const double c1 = g->bulk_viscosity_linear();
+            const double compression = std::sqrt(1.0 + c1 * c1) - c1;
+            scaled_ref[gi].assign(ref.size(), std::numeric_limits<double>::infinity());
             for (std::size_t e = 0; e < ref.size(); ++e)
                 if (std::isfinite(ref[e])) {
                     solid_[gi] = 1;
-                    solid_table_dt = std::min(solid_table_dt, ref[e] * std::sqrt(f[e]));
+                    scaled_ref[gi][e] = ref[e] * std::sqrt(f[e]);
+                    solid_table_dt = std::min(solid_table_dt, scaled_ref[gi][e]);
+                    compressed_table_dt = std::min(compressed_table_dt, scaled_ref[gi][e] * compression);
                 }
+        }
     }
-    // The flattest hexahedron whose bulk viscosity is on (the summary's warning, README "Flat hexahedra
-    // and bulk viscosity").
-    for (const auto& g : groups)
-        if (g->block >= 0 && model_.mesh().blocks[g->block].shape == ElementShape::Hex8 && g->adds_viscous_forces()) {
-            const ElementBlock& blk = model_.mesh().blocks[g->block];
-            for (int e = 0; e < blk.size(); ++e) {
-                std::array<Vec3, 8> X;
-                const auto conn = blk.element(e);
-                for (int a = 0; a < 8; ++a) X[a] = s_.X[conn[a]];
-                if (const double r = hex_lengths(X).ratio(); r > summary_.flattest_hex_ratio) {
-                    summary_.flattest_hex_ratio = r;
-                    summary_.flattest_hex = block_element_name(g->block, e);
-                }
+    // The hexahedron with bulk viscosity nearest its damped step limit (README "Flat hexahedra and
+    // bulk viscosity"): where cbrt(V) > 2 V / A_max the viscosity takes more of the step than Table 2-1
+    // allows for, by cfl::flat_hexahedron_step_factor. Its margin is its damped limit over the run's
+    // step bound in compression (dt_scale x the smallest compressed Table 2-1 step, or the fixed step);
+    // below 1 the run is likely to go unstable within tens of cycles.
+    const double step_bound = opt_.fixed_dt > 0.0 ? opt_.fixed_dt : opt_.dt_scale * compressed_table_dt;
+    for (std::size_t gi = 0; gi < groups.size(); ++gi) {
+        const auto& g = groups[gi];
+        const double c1 = g->bulk_viscosity_linear();
+        if (g->block < 0 || model_.mesh().blocks[g->block].shape != ElementShape::Hex8 || !(c1 > 0.0)) continue;
+        const ElementBlock& blk = model_.mesh().blocks[g->block];
+        for (int e = 0; e < blk.size(); ++e) {
+            std::array<Vec3, 8> X;
+            const auto conn = blk.element(e);
+            for (int a = 0; a < 8; ++a) X[a] = s_.X[conn[a]];
+            const double r = hex_lengths(X).ratio();
+            if (!(r > 2.0)) continue;
+            const double limit = cfl::flat_hexahedron_step_factor(r, c1) * scaled_ref[gi][e] * (std::sqrt(1.0 + c1 * c1) - c1);
+            const double margin = limit / step_bound;
+            if (summary_.flat_hex.empty() || margin < summary_.flat_hex_margin) {
+                summary_.flat_hex_ratio = r;
+                summary_.flat_hex_margin = margin;
+                summary_.flat_hex = block_element_name(g->block, e);
             }
         }
+    }
+    if (!summary_.flat_hex.empty() && summary_.flat_hex_margin < kFlatHexWarnMargin) {
+        const double safe = summary_.flat_hex_margin / kFlatHexWarnMargin;
+        summary_.flat_hex_warning = fmt::format(
+            "WARNING: the run's step bound is {:.3f} x the damped step limit of {} (cbrt(V) = {:.3g} x V / A_max; warned "
+            "from {:.3f}, the model's accuracy): it may go unstable; {} or lower the part's bulk_linear "
+            "(lib/explicit/README.md, \"Flat hexahedra and bulk viscosity\")",
+            1.0 / summary_.flat_hex_margin, summary_.flat_hex, summary_.flat_hex_ratio, 1.0 / kFlatHexWarnMargin,
+            opt_.fixed_dt > 0.0 ? fmt::format("use a fixed step below {:.4g} s", opt_.fixed_dt * safe)
+                                : fmt::format("use dt_scale below {:.3g}", opt_.dt_scale * safe));
+        std::cerr << fmt::format("explicit run '{}': {}\n", opt_.name, summary_.flat_hex_warning);
+    }
     for (const auto& g : groups) {
         g->initialize(s_);  // history variables (shell stresses) start from this state
         summary_.added_mass += g->add_lumped_mass(s_);
@@ -909,16 +946,16 @@ void ExplicitSolver::unstable(const std::string& why, int bad_group, int bad_ele
     // the step's own length V / A_max only; far apart, the step leaves no room for that damping
     // (README "Flat hexahedra and bulk viscosity": a bar of 1.25 x 20 x 20 mm elements at dt_scale 0.9).
     HexLengths lengths;
-    double flatness = 1.0;  // cbrt(V) / (V / A_max) of a hexahedron with bulk viscosity
+    double damped_factor = 1.0;  // its damped step limit over its Table 2-1 step (cfl::flat_hexahedron_step_factor)
     if (block >= 0 && mesh.blocks[block].shape == ElementShape::Hex8) {
-        bool viscous = false;
+        double c1 = 0.0;
         for (const auto& g : model_.groups())
-            if (g->block == block) viscous = g->adds_viscous_forces();
+            if (g->block == block) c1 = g->bulk_viscosity_linear();
         std::array<Vec3, 8> X;
         const auto conn = mesh.blocks[block].element(element);
         for (int a = 0; a < 8; ++a) X[a] = s_.X[conn[a]];
         lengths = hex_lengths(X);
-        if (viscous) flatness = lengths.ratio();
+        if (c1 > 0.0) damped_factor = cfl::flat_hexahedron_step_factor(lengths.ratio(), c1);
     }
     // Why, most likely: a fixed step above the critical one (Eq 2-27), else a deformation the mesh
     // cannot follow: an inverted element, or elements collapsing faster than the step adapts.
@@ -934,13 +971,16 @@ void ExplicitSolver::unstable(const std::string& why, int bad_group, int bad_ele
         cause = fmt::format("the critical step fell below the step in use ({:.4g} < {:.4g} s, {}): elements collapsing "
                             "faster than the step adapts, {}", dt_crit_, dt_used, element_name(dt_group_, dt_element_),
                             too_large);
-    else if (flatness > 3.0 && ratio > 0.9 && ratio < 1.1)
+    else if (damped_factor < 1.0 && damped_factor < 1.05 * dt_used / dt_crit_ && ratio > 0.9 && ratio < 1.1)
+        // Its damped limit (at most, when it controls the step) within 5 % of the step in use: the
+        // README's map of flat bars puts every unstable case there.
         cause = fmt::format("a flat element with bulk viscosity: the viscosity acts over the cube root of its volume, "
-                            "{:.3g} m, {:.3g} x the length V / A_max = {:.3g} m its Table 2-1 step is taken over, and "
-                            "that step leaves no room for the damping (the element's volume is {:.3g} x its initial "
-                            "one: no large deformation); lower the step scale (fem-explicit: [control] dt_scale) or "
-                            "use less flat elements",
-                            lengths.viscous, flatness, lengths.step, ratio);
+                            "{:.3g} m, {:.3g} x the length V / A_max = {:.3g} m its Table 2-1 step is taken over, which "
+                            "makes its stable step {:.3g} x Table 2-1's while the step in use is {:.3g} x the critical "
+                            "one (the element's volume is {:.3g} x its initial one: no large deformation); lower the "
+                            "step scale (fem-explicit: [control] dt_scale) or the part's bulk_linear, or use less flat "
+                            "elements",
+                            lengths.viscous, lengths.ratio(), lengths.step, damped_factor, dt_used / dt_crit_, ratio);
     else
         cause = fmt::format("a deformation the mesh cannot follow (the element's volume is now {:.3g} x its initial "
                             "one): {}", ratio, too_large);

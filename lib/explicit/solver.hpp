@@ -361,11 +361,14 @@ struct RunSummary {
     int controlling_block = -1, controlling_element = -1;
     double controlling_dt = 0;   // its critical step (before the 0.9 and the stability factor)
     double stability_factor = 1; // measured 2/omega_max over the smallest solid Table 2-1 step (solid groups; may exceed 1 for tetrahedra)
-    /// The flattest hexahedron with bulk viscosity: the viscosity's length cbrt(V) over its Table 2-1
-    /// length V / A_max (1 for a cube; README "Flat hexahedra and bulk viscosity": above ~3 the step
-    /// may not allow for the damping), and which element (0 and empty: no such hexahedron).
-    double flattest_hex_ratio = 0;
-    std::string flattest_hex;
+    /// Of the hexahedra with bulk viscosity flatter than cbrt(V) = 2 V / A_max (README "Flat hexahedra
+    /// and bulk viscosity"), the one nearest its damped step limit: which element (empty: none), its
+    /// ratio cbrt(V) / (V / A_max), and its damped limit over the run's step bound in compression
+    /// (cfl::flat_hexahedron_step_factor; below 1 the run is likely to go unstable).
+    std::string flat_hex;
+    double flat_hex_ratio = 0;
+    double flat_hex_margin = 0;
+    std::string flat_hex_warning;  // when its margin is below 1.03 (the model's accuracy): what to do
     double mass = 0, added_mass = 0, added_mass_fraction = 0;
     // What limits the step at the end (ExplicitSolver::choose_dt): the elements' stable step and each
     // force provider's (contact penalties, ties), combined as 1/dt^2 = sum 1/dt_i^2 before the

@@ -64,6 +64,7 @@ public:
     GroupForceResult internal_forces(NodalState& s, bool compute_dt) override;
     std::vector<double> element_stress() const override;
     bool adds_viscous_forces() const override { return kmat_.bulk_viscosity || beta_ > 0.0; }
+    double bulk_viscosity_linear() const override { return kmat_.bulk_viscosity ? kmat_.bulk.linear : 0.0; }
     bool set_stability_factor(double r) override;
     double element_omega_bound() const override;
 

@@ -131,7 +131,7 @@ Part read_part(const TomlTable& t, const std::map<std::string, ElasticMaterial>&
         t.fail("mesh", "a case with [hand] has its fingers in [hand]; its [[part]]s are the objects it grasps (ellipsoid, "
                        "box, gmsh or deck), got 'finger'");
     std::vector<std::string> keys{"name", "mesh", "material", "alpha", "damping_frame", "initial_velocity"};
-    if (p.mesh != "ellipsoid") keys.insert(keys.end(), {"offset", "hourglass_qm"});
+    if (p.mesh != "ellipsoid") keys.insert(keys.end(), {"offset", "hourglass_qm", "bulk_quadratic", "bulk_linear"});
     if (hand_case && p.mesh != "ellipsoid") keys.push_back("symmetry_set");
     if (p.mesh == "box") keys.insert(keys.end(), {"size", "origin", "elements", "element"});
     if (p.mesh == "finger") keys.insert(keys.end(), {"table_3_2_case", "table_4_1_finger"});
@@ -152,6 +152,8 @@ Part read_part(const TomlTable& t, const std::map<std::string, ElasticMaterial>&
     if (p.mesh != "ellipsoid") {
         p.offset = vec3_or(t, "offset", Vec3::Zero());
         p.hourglass_qm = t.real_or("hourglass_qm", 0.1, Range::non_negative());
+        p.bulk.quadratic = t.real_or("bulk_quadratic", BulkViscosity{}.quadratic, Range::non_negative());
+        p.bulk.linear = t.real_or("bulk_linear", BulkViscosity{}.linear, Range::non_negative());
         if (hand_case) p.symmetry_set = t.string_or("symmetry_set", "");
     }
     if (p.mesh == "box") {

@@ -82,6 +82,8 @@ struct Part {
     std::string damping_frame;
     Vec3 initial_velocity = Vec3::Zero();
     double hourglass_qm = 0.1;     // hexahedra
+    /// Table 2-1's bulk viscosity coefficients (*CONTROL_BULK_VISCOSITY Q1 = C0, Q2 = C1); both 0: none.
+    BulkViscosity bulk{};
     int line = 0;                  // in the case file, for messages
 };
 

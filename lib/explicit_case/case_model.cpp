@@ -127,6 +127,7 @@ hand::Scene hand_scene(const ExplicitCase& c) {
         o.initial_velocity = p.initial_velocity;
         o.alpha = p.alpha;
         o.hourglass_qm = p.hourglass_qm;
+        o.bulk = p.bulk;
         o.symmetry_set = p.symmetry_set;
         if (!o.symmetry_set.empty() && !o.mesh.node_sets.count(o.symmetry_set)) {
             std::vector<std::string> known;
@@ -176,12 +177,11 @@ CaseModel::CaseModel(const ExplicitCase& c) {
                         volume += contact::element_volume(msh.blocks[b].shape, msh.element_coordinates(b, e));
                 material = ElasticMaterial::make(material.name, material.youngs_modulus, material.poissons_ratio, mass / volume);
             }
+            const bool bulk_on = p.bulk.quadratic > 0.0 || p.bulk.linear > 0.0;
             if (shapes == std::set{ElementShape::Hex8}) {
-                Hex8Options o;
-                o.hourglass_qm = p.hourglass_qm;
-                model.add_hex8(p.name, material, o);
+                model.add_hex8(p.name, material, {.hourglass_qm = p.hourglass_qm, .bulk_viscosity = bulk_on, .bulk = p.bulk});
             } else if (std::all_of(shapes.begin(), shapes.end(), [](ElementShape s) { return s == ElementShape::Tet4 || s == ElementShape::Tet10; })) {
-                add_tets(model, p.name, material);
+                add_tets(model, p.name, material, {.bulk_viscosity = bulk_on, .bulk = p.bulk});
             } else {
                 std::string names;
                 for (ElementShape s : shapes) names += (names.empty() ? "" : ", ") + std::string(to_string(s));

@@ -111,6 +111,7 @@ HandModel::HandModel(const Scene& scene) : scene_(scene) {
     }
     std::set<std::string> tet_parts;
     std::map<std::string, double> hourglass_qm;  // hexahedral mesh objects' own QM (default Hex8Options)
+    std::map<std::string, BulkViscosity> bulk;   // mesh objects' own bulk viscosity (default Table 2-1's)
     for (const auto& o : scene_.meshes) {
         check_new_part(o.part);
         const Mesh& m = o.mesh;
@@ -127,6 +128,7 @@ HandModel::HandModel(const Scene& scene) : scene_(scene) {
         if (m.blocks.empty()) throw InputError(fmt::format("hand scene: mesh object '{}' has no elements", o.part));
         if (tets) tet_parts.insert(o.part);
         else hourglass_qm[o.part] = o.hourglass_qm;
+        bulk[o.part] = o.bulk;
         if (!o.symmetry_set.empty()) cut_plane_z(o);  // refuses a cut that is not a plane z = const
         add_object(m, o.part, o.material);
     }
@@ -135,10 +137,12 @@ HandModel::HandModel(const Scene& scene) : scene_(scene) {
     model_ = std::make_unique<ExplicitModel>(std::move(mesh));
     const Mesh& msh = model_->mesh();
     for (const auto& [part, mat] : material) {
+        const BulkViscosity q = bulk.count(part) ? bulk.at(part) : BulkViscosity{};
+        const bool bulk_on = q.quadratic > 0.0 || q.linear > 0.0;
         if (tet_parts.count(part)) {
-            add_tets(*model_, part, mat);
+            add_tets(*model_, part, mat, {.bulk_viscosity = bulk_on, .bulk = q});
         } else {
-            Hex8Options o;
+            Hex8Options o{.bulk_viscosity = bulk_on, .bulk = q};
             if (const auto qm = hourglass_qm.find(part); qm != hourglass_qm.end()) o.hourglass_qm = qm->second;
             model_->add_hex8(part, mat, o);
         }

@@ -26,6 +26,7 @@
 
 #include "contact/contact.hpp"
 #include "contact/rigid_wall.hpp"
+#include "element/critical_time_step.hpp"
 #include "explicit/offset_tie.hpp"
 #include "explicit/solver.hpp"
 #include "hand/hand.hpp"
@@ -106,6 +107,7 @@ struct MeshObject {
     Vec3 initial_velocity = Vec3::Zero();
     double alpha = 0.0;          // mass damping [1/s]
     double hourglass_qm = 0.1;   // hexahedral objects: QM of the stiffness hourglass control (Hex8Options)
+    BulkViscosity bulk{};        // Table 2-1's bulk viscosity (Hex8Options, TetGroupOptions); both 0: none
     std::string symmetry_set;    // empty: a whole object
     std::vector<PlateTie> ties;
 };

@@ -620,6 +620,41 @@ initial_velocity = [0.0, 0.0, 0.5]
     EXPECT_NEAR(later.meshes[0].mesh.nodes[0].z() - hand_scene(mirrored).meshes[0].mesh.nodes[0].z(), 0.05, 1e-15);
 }
 
+// A part's bulk_quadratic / bulk_linear (Table 2-1's C0, C1; LS-DYNA's Q1, Q2) reach its element
+// groups, hexahedral and tetrahedral, in a plain case and as a hand case's object; both 0 turn the
+// bulk viscosity off; the fingers and an unset part keep the defaults.
+TEST(ExplicitCase, PartBulkViscosityReachesItsGroups) {
+    const std::string materials = R"(
+[control]
+end_time = 1.0e-5
+[[material]]
+name = "rubber"
+E = 6.1e6
+nu = 0.49
+rho = 1000.0
+)";
+    auto part = [](const std::string& name, const std::string& element, const std::string& extra) {
+        return fmt::format("[[part]]\nname = \"{}\"\nmaterial = \"rubber\"\nmesh = \"box\"\nsize = [0.02, 0.02, 0.02]\n"
+                           "origin = [1.0, 0.0, {}]\nelements = [1, 1, 1]\nelement = \"{}\"\n{}",
+                           name, name == "plain" ? "-0.1" : name == "tets" ? "-0.2" : "-0.3", element, extra);
+    };
+    const std::string parts = part("hexes", "hex8", "bulk_linear = 0.02\nbulk_quadratic = 1.0\n") +
+                              part("tets", "tet10", "bulk_linear = 0.03\n") + part("off", "hex8", "bulk_linear = 0.0\nbulk_quadratic = 0.0\n") +
+                              part("plain", "hex8", "");
+    for (const std::string& hand : {std::string(), std::string("[hand]\nfingers = \"table-4-1\"\n")}) {
+        CaseModel m(parse_case(materials + hand + parts, "bulk.toml"));
+        std::map<std::string, double> linear;
+        for (const auto& g : m.model().groups()) linear[g->part] = g->bulk_viscosity_linear();
+        EXPECT_EQ(linear.at("hexes"), 0.02) << hand;
+        EXPECT_EQ(linear.at("tets"), 0.03) << hand;
+        EXPECT_EQ(linear.at("off"), 0.0) << hand;
+        EXPECT_EQ(linear.at("plain"), BulkViscosity{}.linear) << hand;
+        for (const auto& g : m.model().groups())
+            if (g->part == "off") EXPECT_FALSE(g->adds_viscous_forces());
+        if (!hand.empty()) EXPECT_EQ(linear.at("finger-A"), BulkViscosity{}.linear);
+    }
+}
+
 TEST(ExplicitCase, ReaderRefusesWithFileLineAndKey) {
     auto refused = [](const std::string& text) {
         try {
