@@ -237,7 +237,7 @@ HexLengths hex_lengths(const std::array<Vec3, 8>& x) {
 }
 /// A flat hexahedron's damped step limit within this factor of the run's step bound is warned of: the
 /// model (cfl::flat_hexahedron_step_factor) put two of the 63 measured cases on the wrong side of its
-/// boundary, each within 0.3 % of it.
+/// boundary, 0.02 % and 0.32 % from it.
 constexpr double kFlatHexWarnMargin = 1.03;
 }  // namespace
 
