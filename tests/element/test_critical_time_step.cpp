@@ -142,6 +142,8 @@ TEST(CriticalTimeStep, FlatHexahedronFactorPredictsTheMeasuredMapOfFlatBars) {
         const double ratio = std::cbrt(0.02 * 0.02 / row.n) / cfl::hexahedron_length(slab);
         const double factor = cfl::flat_hexahedron_step_factor(ratio, BulkViscosity{}.linear);
         EXPECT_GE(factor, row.ran) << row.n;
-        if (row.unstable > 0) EXPECT_LE(factor, 1.005 * row.unstable) << row.n;
+        if (row.unstable > 0) {
+            EXPECT_LE(factor, 1.005 * row.unstable) << row.n;
+        }
     }
 }

@@ -649,9 +649,14 @@ rho = 1000.0
         EXPECT_EQ(linear.at("tets"), 0.03) << hand;
         EXPECT_EQ(linear.at("off"), 0.0) << hand;
         EXPECT_EQ(linear.at("plain"), BulkViscosity{}.linear) << hand;
-        for (const auto& g : m.model().groups())
-            if (g->part == "off") EXPECT_FALSE(g->adds_viscous_forces());
-        if (!hand.empty()) EXPECT_EQ(linear.at("finger-A"), BulkViscosity{}.linear);
+        for (const auto& g : m.model().groups()) {
+            if (g->part == "off") {
+                EXPECT_FALSE(g->adds_viscous_forces());
+            }
+        }
+        if (!hand.empty()) {
+            EXPECT_EQ(linear.at("finger-A"), BulkViscosity{}.linear);
+        }
     }
 }
 
