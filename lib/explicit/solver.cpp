@@ -22,6 +22,7 @@
 #include "element/hex8_explicit.hpp"
 #include "explicit/node_update.hpp"
 #include "explicit/parallel.hpp"
+#include "io/atomic_file.hpp"
 #include "io/hdf5.hpp"
 
 namespace fem {
@@ -1088,10 +1089,9 @@ void ExplicitSolver::write_vtu(double t) {
 namespace {
 constexpr const char* kRestartFormat = "fem explicit restart 1";
 
+// A run's name as the start of its restart files' names ("explicit" for an unnamed run).
 std::string safe_file_name(std::string_view name) {
-    std::string s(name);
-    for (char& c : s)
-        if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-' && c != '_' && c != '.') c = '_';
+    std::string s = io::safe_file_name(name);
     return s.empty() ? std::string("explicit") : s;
 }
 

@@ -299,20 +299,6 @@ std::optional<std::vector<double>> numeric_values(const std::vector<std::vector<
     return v;
 }
 
-// A name for files and gnuplot columns: letters, digits, '_', '-' and '.', the rest '_'.
-std::string file_name(std::string name) {
-    for (char& c : name)
-        if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.')) c = '_';
-    return name;
-}
-
-// A string for a gnuplot script between single quotes ('' stands for ').
-std::string gnuplot_quoted(const std::string& s) {
-    std::string q = "'";
-    for (char c : s) q += c == '\'' ? std::string("''") : std::string(1, c);
-    return q + "'";
-}
-
 // sweep.gp and one SVG per [[result]] (sweep-<result>.svg): the result against the first parameter
 // whose values are numbers and differ (else against the case number), one line per combination of
 // the other parameters' values. The data are in the script, so `gnuplot sweep.gp` in the folder draws
@@ -347,10 +333,10 @@ std::vector<std::string> write_plots(const Sweep& s, const std::vector<std::vect
         "if (!exists('folder')) folder = '.'\n"
         "set terminal svg size 900,560 noenhanced font 'sans,12' background rgb 'white'\n"
         "set grid\nset key outside bottom center horizontal font 'sans,10'\nset xlabel {}\n",
-        s.source, n, x >= 0 ? s.parameters[x].key : "the case number", gnuplot_quoted(x >= 0 ? s.parameters[x].key : "case"));
+        s.source, n, x >= 0 ? s.parameters[x].key : "the case number", io::gnuplot_string(x >= 0 ? s.parameters[x].key : "case"));
     std::vector<std::string> figures;
     for (std::size_t r = 0; r < s.results.size(); ++r) {
-        const std::string figure = "sweep-" + file_name(s.results[r].name) + ".svg";
+        const std::string figure = "sweep-" + io::safe_file_name(s.results[r].name) + ".svg";
         std::string plot, data;
         for (std::size_t g = 0; g < groups.size(); ++g) {
             std::vector<std::pair<double, double>> points;
@@ -363,11 +349,11 @@ std::vector<std::string> write_plots(const Sweep& s, const std::vector<std::vect
             for (const auto& [px, py] : points) data += fmt::format("{} {}\n", px, py);
             data += "EOD\n";
             plot += fmt::format("{}{} using 1:2 with linespoints lw 2 pt 7 title {}", plot.empty() ? "plot " : ", \\\n     ", block,
-                                gnuplot_quoted(groups[g].empty() ? s.results[r].name : groups[g]));
+                                io::gnuplot_string(groups[g].empty() ? s.results[r].name : groups[g]));
         }
         gp += fmt::format("\n# {}\n{}set output folder.'/{}'\nset title {}\nset ylabel {}\n{}\n", s.results[r].name, data, figure,
-                          gnuplot_quoted(fmt::format("{} ({} of {})", s.results[r].name, s.results[r].reduce, s.results[r].column)),
-                          gnuplot_quoted(s.results[r].column), plot);
+                          io::gnuplot_string(fmt::format("{} ({} of {})", s.results[r].name, s.results[r].reduce, s.results[r].column)),
+                          io::gnuplot_string(s.results[r].column), plot);
         figures.push_back(figure);
     }
     io::write_text_file(folder / "sweep.gp", gp);
@@ -517,11 +503,11 @@ SweepOutcome run_sweep(const Sweep& s, const SweepOptions& options) {
         for (int k = 0; k < n; ++k) index[k] = k;
         dat.add("case", index);
         for (std::size_t i = 0; i < s.parameters.size(); ++i)
-            if (const auto v = numeric_values(shown, i)) dat.add(file_name(s.parameters[i].key), *v);
+            if (const auto v = numeric_values(shown, i)) dat.add(io::safe_file_name(s.parameters[i].key), *v);
         for (std::size_t j = 0; j < sweep_solver_columns().size() + s.results.size(); ++j) {
             std::vector<double> v(n);
             for (int k = 0; k < n; ++k) v[k] = out.rows[k].numbers[j];
-            dat.add(file_name(j < sweep_solver_columns().size() ? sweep_solver_columns()[j]
+            dat.add(io::safe_file_name(j < sweep_solver_columns().size() ? sweep_solver_columns()[j]
                                                                  : s.results[j - sweep_solver_columns().size()].name),
                     v);
         }

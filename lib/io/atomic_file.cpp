@@ -1,6 +1,7 @@
 #include "io/atomic_file.hpp"
 
 #include <atomic>
+#include <cctype>
 #include <string>
 #include <system_error>
 
@@ -42,6 +43,13 @@ void AtomicFile::commit() {
     out_.close();
     std::filesystem::rename(partial_, path_);
     committed_ = true;
+}
+
+std::string safe_file_name(std::string_view name) {
+    std::string s(name);
+    for (char& c : s)
+        if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-' && c != '_' && c != '.') c = '_';
+    return s;
 }
 
 void write_text_file(const std::filesystem::path& path, const std::string& text) {

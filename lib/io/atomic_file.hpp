@@ -5,6 +5,8 @@
 // temporary; one killed leaves it, and io::RunFolder removes such leftovers.
 #include <filesystem>
 #include <fstream>
+#include <string>
+#include <string_view>
 
 namespace fem::io {
 
@@ -35,5 +37,9 @@ std::filesystem::path partial_name(const std::filesystem::path& path);
 
 /// Writes `text` to `path` atomically.
 void write_text_file(const std::filesystem::path& path, const std::string& text);
+
+/// `name` as a part of a file name (and a gnuplot column name): letters, digits, '-', '_' and '.'
+/// kept, every other character '_'.
+std::string safe_file_name(std::string_view name);
 
 }  // namespace fem::io

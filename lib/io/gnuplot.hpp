@@ -5,10 +5,15 @@
 #include <filesystem>
 #include <map>
 #include <string>
+#include <string_view>
 
 namespace fem::io {
 
-/// Runs gnuplot on `script` with the given string variables; throws SolverError with gnuplot's
+/// `s` as a gnuplot string constant between single quotes ('' stands for a quote inside).
+std::string gnuplot_string(std::string_view s);
+
+/// Runs gnuplot on `script` with the given string variables (any text: quoted for gnuplot and the
+/// shell); throws SolverError with gnuplot's
 /// output when gnuplot fails, InputError when the script does not exist.
 void run_gnuplot(const std::filesystem::path& script, const std::map<std::string, std::string>& variables);
 

@@ -10,6 +10,7 @@
 
 #include "core/error.hpp"
 #include "io/atomic_file.hpp"
+#include "io/gnuplot.hpp"
 #include "io/hdf5.hpp"
 #include "io/run_folder.hpp"
 #include "io/table.hpp"
@@ -57,6 +58,22 @@ TEST(AtomicFile, NothingUnderTheFinalNameUntilCommit) {
     EXPECT_FALSE(fs::exists(dir / "b.txt"));
     EXPECT_EQ(files_in(dir), std::vector<std::string>{"a.txt"});  // no temporary left behind
     EXPECT_THROW(io::AtomicFile(fs::path("/proc/no/such/dir/x.txt")), InputError);
+}
+
+TEST(SafeFileName, KeepsLettersDigitsDashUnderscoreDot) {
+    EXPECT_EQ(io::safe_file_name("part[bar].E max/min 1e-3"), "part_bar_.E_max_min_1e-3");
+    EXPECT_EQ(io::safe_file_name(""), "");
+}
+
+// run_gnuplot hands its variables to gnuplot as they are, whatever the shell or gnuplot would make of
+// a quote, a dollar or a back quote in them (a folder named by a user).
+TEST(Gnuplot, VariablesArriveVerbatim) {
+    const auto dir = scratch("gnuplot it's \"here\"");
+    const std::string text = "it's \"$HOME\" `true` \\ done";
+    io::write_text_file(dir / "print.gp", "set print out\nprint text\n");
+    io::run_gnuplot(dir / "print.gp", {{"out", (dir / "printed.txt").string()}, {"text", text}});
+    EXPECT_EQ(slurp(dir / "printed.txt"), text + "\n");
+    EXPECT_EQ(io::gnuplot_string("a'b"), "'a''b'");
 }
 
 TEST(Table, DatHasHeaderAndRows) {
