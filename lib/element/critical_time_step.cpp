@@ -144,8 +144,10 @@ double solid_time_step(double length, double wave_speed, double volumetric_strai
 
 double flat_hexahedron_step_factor(double length_ratio, double linear) {
     const double xi = linear * std::max(1.0, 0.5 * length_ratio);
-    return (std::sqrt(1.0 + xi * xi) - xi) / (std::sqrt(1.0 + linear * linear) - linear);
+    return compression_step_factor(xi) / compression_step_factor(linear);
 }
+
+double compression_step_factor(double linear) { return std::sqrt(1.0 + linear * linear) - linear; }
 
 double wave_speed(ElementShape shape, const ElasticMaterial& m) {
     switch (shape) {

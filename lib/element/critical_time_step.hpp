@@ -71,6 +71,10 @@ double time_step(double length, double wave_speed);
 double solid_time_step(double length, double wave_speed, double volumetric_strain_rate,
                        const BulkViscosity& q);
 
+/// Table 2-1's solid step in compression at a vanishing strain rate (Q = C1 c) over L_e / c:
+/// sqrt(1 + C1^2) - C1 (0.942 for LS-DYNA's C1 = 0.06).
+double compression_step_factor(double linear);
+
 /// How far a flat hexahedron's bulk viscosity shortens its stable step below Table 2-1's, as a
 /// factor <= 1 of the Table 2-1 step in compression, (L_e / c)(sqrt(1 + C1^2) - C1). The viscosity's
 /// pressure acts over l = cbrt(V) (LS-DYNA's length for solids), the step over L_e = V / A_max; the

@@ -496,8 +496,7 @@ void ExplicitSolver::initialize() {
         }
         // Solid: no rotational DOFs and a critical step (hexahedra, tetrahedra; not beams, point masses).
         if (!g->needs_rotations()) {
-            const double c1 = g->bulk_viscosity_linear();
-            const double compression = std::sqrt(1.0 + c1 * c1) - c1;
+            const double compression = cfl::compression_step_factor(g->bulk_viscosity_linear());
             scaled_ref[gi].assign(ref.size(), std::numeric_limits<double>::infinity());
             for (std::size_t e = 0; e < ref.size(); ++e)
                 if (std::isfinite(ref[e])) {
@@ -525,7 +524,7 @@ void ExplicitSolver::initialize() {
             for (int a = 0; a < 8; ++a) X[a] = s_.X[conn[a]];
             const double r = hex_lengths(X).ratio();
             if (!(r > 2.0)) continue;
-            const double limit = cfl::flat_hexahedron_step_factor(r, c1) * scaled_ref[gi][e] * (std::sqrt(1.0 + c1 * c1) - c1);
+            const double limit = cfl::flat_hexahedron_step_factor(r, c1) * scaled_ref[gi][e] * cfl::compression_step_factor(c1);
             const double margin = limit / step_bound;
             if (summary_.flat_hex.empty() || margin < summary_.flat_hex_margin) {
                 summary_.flat_hex_ratio = r;
