@@ -350,8 +350,9 @@ nlohmann::json RunSummary::to_json() const {
             {"step_at_end_s", step_at_end},
             {"stability_factor", stability_factor},
             {"flat_hex", flat_hex},
-            {"flat_hex_ratio", flat_hex_ratio},
-            {"flat_hex_margin", flat_hex_margin},
+            // null, not 0, when no hexahedron is flat enough to name: a margin of 0 would read as "unstable now".
+            {"flat_hex_ratio", flat_hex.empty() ? nlohmann::json(nullptr) : nlohmann::json(flat_hex_ratio)},
+            {"flat_hex_margin", flat_hex.empty() ? nlohmann::json(nullptr) : nlohmann::json(flat_hex_margin)},
             {"mass_kg", mass},
             {"added_mass_kg", added_mass},
             {"added_mass_fraction", added_mass_fraction},

@@ -364,7 +364,8 @@ struct RunSummary {
     /// Of the hexahedra with bulk viscosity flatter than cbrt(V) = 2 V / A_max (README "Flat hexahedra
     /// and bulk viscosity"), the one nearest its damped step limit: which element (empty: none), its
     /// ratio cbrt(V) / (V / A_max), and its damped limit over the run's step bound in compression
-    /// (cfl::flat_hexahedron_step_factor; below 1 the run is likely to go unstable).
+    /// (cfl::flat_hexahedron_step_factor; below 1 the run is likely to go unstable). run.json has null
+    /// for the ratio and margin when none is named.
     std::string flat_hex;
     double flat_hex_ratio = 0;
     double flat_hex_margin = 0;

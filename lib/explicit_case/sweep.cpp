@@ -155,7 +155,8 @@ Sweep read_sweep(const std::filesystem::path& file) {
 
 const std::vector<std::string>& sweep_solver_columns() {
     static const std::vector<std::string> columns{"steps", "end_time_s", "wall_s", "element_cycles_per_s",
-                                                  "energy_balance_relative_error", "hourglass_fraction_of_internal"};
+                                                  "energy_balance_relative_error", "hourglass_fraction_of_internal",
+                                                  "flat_hex_margin"};
     return columns;
 }
 

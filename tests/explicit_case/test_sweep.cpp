@@ -146,7 +146,7 @@ TEST(Sweep, EachCaseIsTheCaseFileWithItsValuesSetAndMatchesTheClosedForm) {
     EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 5);
     EXPECT_EQ(csv.substr(0, csv.find('\n')),
               "case,material[steel].E,boundary[0].velocity,status,steps,end_time_s,wall_s,element_cycles_per_s,"
-              "energy_balance_relative_error,hourglass_fraction_of_internal,free end peak ux,final kinetic energy");
+              "energy_balance_relative_error,hourglass_fraction_of_internal,flat_hex_margin,free end peak ux,final kinetic energy");
     const nlohmann::json j = nlohmann::json::parse(file_text(sweep.folder / "sweep.json"));
     ASSERT_EQ(j.at("cases").size(), 4u);
     EXPECT_EQ(j["cases"][3]["settings"]["material[steel].E"], "2.1e+11");
@@ -266,6 +266,8 @@ TEST(Sweep, TheSummaryNamesTheFlatHexahedronNearestItsDampedStepLimit) {
         EXPECT_EQ(o.summary.find("WARNING: the run's step bound is") != std::string::npos, row.warned) << o.summary;
         if (!row.named) {
             EXPECT_EQ(run.at("flat_hex").get<std::string>(), "");
+            EXPECT_TRUE(run.at("flat_hex_ratio").is_null());  // no flat element: no number, not 0
+            EXPECT_TRUE(run.at("flat_hex_margin").is_null());
             continue;
         }
         const int n = std::stoi(std::string(row.elements).substr(1));
@@ -274,6 +276,40 @@ TEST(Sweep, TheSummaryNamesTheFlatHexahedronNearestItsDampedStepLimit) {
         const double margin = cfl::flat_hexahedron_step_factor(ratio, BulkViscosity{}.linear) / row.dt_scale;
         EXPECT_NEAR(run.at("flat_hex_margin").get<double>(), margin, 1e-9 * margin) << row.elements;
     }
+}
+
+TEST(Sweep, TheFlatHexahedronMarginIsAColumnLeftEmptyWhereNoElementIsFlat) {
+    // A mesh-density sweep shows how near each mesh's flattest hexahedron comes to its damped step
+    // limit: the 100-element bar has none flat enough to name (an empty cell and null, not a margin
+    // of 0), the 800 slabs have one (margin as in run.json, TheSummaryNames... above).
+    const fs::path dir = sweep_scratch("flat_column");
+    const Sweep sweep = read_sweep(sweep_file(dir, R"(
+[[parameter]]
+key = "part[bar].elements"
+values = [[100, 1, 1], [800, 1, 1]]
+[[parameter]]
+key = "control.end_time"
+values = [1e-6]
+[[parameter]]
+key = "control.dt_scale"
+values = [0.5]
+)"));
+    const SweepOutcome out = run_sweep(sweep, {.quiet = true});
+    ASSERT_TRUE(out.all_ok()) << out.table;
+    const nlohmann::json j = nlohmann::json::parse(file_text(sweep.folder / "sweep.json"));
+    EXPECT_TRUE(j.at("cases").at(0).at("values").at("flat_hex_margin").is_null()) << j.dump(2);
+    const double margin = j.at("cases").at(1).at("values").at("flat_hex_margin").get<double>();
+    const nlohmann::json run = nlohmann::json::parse(file_text(sweep.case_folder(1) / "run.json"));
+    EXPECT_EQ(margin, run.at("flat_hex_margin").get<double>());
+    EXPECT_NEAR(margin, cfl::flat_hexahedron_step_factor(std::cbrt(0.02 * 0.02 / 800) * 800, BulkViscosity{}.linear) / 0.5,
+                1e-9 * margin);
+    // sweep.csv: the column is the last of the solver's, before the results (none here); case 0's cell empty.
+    const std::string csv = file_text(sweep.folder / "sweep.csv");
+    const std::string header = csv.substr(0, csv.find('\n'));
+    EXPECT_TRUE(header.ends_with(",hourglass_fraction_of_internal,flat_hex_margin")) << header;
+    const std::size_t row0 = csv.find('\n') + 1;
+    const std::string line0 = csv.substr(row0, csv.find('\n', row0) - row0);
+    EXPECT_TRUE(line0.ends_with(",")) << line0;
 }
 
 TEST(Sweep, ListReadsEveryCaseAndRunsNothing) {
