@@ -389,3 +389,36 @@ TEST(GmshSession, LeavesTheCallersThreadCountAlone) {
     omp_set_num_threads(saved);
 }
 #endif
+
+namespace {
+// Is a library whose file name contains `name` mapped into this process (/proc/self/maps)?
+bool library_mapped(const std::string& name) {
+    std::ifstream maps("/proc/self/maps");
+    for (std::string line; std::getline(maps, line);)
+        if (line.find(name) != std::string::npos) return true;
+    return false;
+}
+// Taken while the program starts (static initialisation, after the loader has mapped every library
+// the program needs and before any test runs), so that the order the tests run in does not matter.
+const bool gmsh_mapped_at_start = library_mapped("libgmsh.so");
+}  // namespace
+
+// No program links libgmsh (its start costs 0.12 s: mesh/gmsh_api.hpp); the first Gmsh call loads it
+// through the plugin, and Gmsh's exceptions reach the caller as from Gmsh's own API.
+TEST(GmshPlugin, GmshIsLoadedByTheFirstGmshCallNotAtStart) {
+    EXPECT_FALSE(gmsh_mapped_at_start) << "a program of the project links libgmsh again";
+    {
+        GmshSession session;
+        EXPECT_TRUE(library_mapped("libgmsh.so"));
+        EXPECT_TRUE(library_mapped("libfem_gmsh.so"));
+        gmsh::model::add("plugin");
+        EXPECT_EQ(gmsh::model::occ::addBox(0, 0, 0, 1, 2, 3), 1);  // a return value passed back
+        gmsh::model::occ::synchronize();
+        double volume = 0;
+        gmsh::model::occ::getMass(3, 1, volume);  // an output argument
+        EXPECT_NEAR(volume, 6.0, 1e-12);
+        // Gmsh's API throws its last error message as a std::string (what gmsh.cpp catches).
+        EXPECT_THROW(gmsh::model::occ::getMass(3, 99, volume), std::string);
+        gmsh::clear();
+    }
+}
