@@ -10,8 +10,6 @@
 namespace fem::detail {
 
 namespace {
-constexpr const char* kPlugin = "libfem_gmsh.so";  // found on the programs' run path (CMakeLists.txt)
-
 std::string load_error() {
     const char* e = dlerror();
     return e ? e : "no reason given";
@@ -22,21 +20,22 @@ const GmshApi& gmsh_api() {
     // Loaded once and never unloaded (Gmsh keeps global state); a failed load throws and the next
     // call tries again.
     static const GmshApi* const api = [] {
-        void* plugin = dlopen(kPlugin, RTLD_NOW | RTLD_LOCAL);
+        const char* const plugin_path = gmsh_plugin_path();
+        void* plugin = dlopen(plugin_path, RTLD_NOW | RTLD_LOCAL);
         if (!plugin)
-            throw std::runtime_error(fmt::format("cannot load the Gmsh plugin {} (built beside the project's libraries; "
-                                                 "mesh/gmsh_api.hpp): {}", kPlugin, load_error()));
+            throw std::runtime_error(fmt::format("cannot load the Gmsh plugin {} (built with the project; "
+                                                 "mesh/gmsh_api.hpp): {}", plugin_path, load_error()));
         const auto get = reinterpret_cast<const GmshApi* (*)()>(dlsym(plugin, "fem_gmsh_api"));
-        if (!get) throw std::runtime_error(fmt::format("{} has no fem_gmsh_api: {}", kPlugin, load_error()));
+        if (!get) throw std::runtime_error(fmt::format("{} has no fem_gmsh_api: {}", plugin_path, load_error()));
         const GmshApi* a = get();
         if (a->size != sizeof(GmshApi))
             throw std::runtime_error(fmt::format("{} is from another build of the project (its Gmsh table has {} bytes, "
-                                                 "this program's {}): build again", kPlugin, a->size, sizeof(GmshApi)));
+                                                 "this program's {}): build again", plugin_path, a->size, sizeof(GmshApi)));
         // A program that exported its own symbols (-rdynamic) would have handed the plugin these
         // forwarders in place of Gmsh's functions, and each call would recurse forever.
         if (a->model_add == &gmsh::model::add)
             throw std::runtime_error(fmt::format("{} resolved Gmsh's functions to this program's forwarders (a program "
-                                                 "linked with -rdynamic?)", kPlugin));
+                                                 "linked with -rdynamic?)", plugin_path));
         return a;
     }();
     return *api;

@@ -81,6 +81,9 @@ struct GmshApi {
 #undef FEM_GMSH_MEMBER
 };
 
+/// Where the build put libfem_gmsh.so (gmsh_plugin_path.cpp).
+const char* gmsh_plugin_path();
+
 /// The plugin's functions, loaded on the first call (thread-safe). std::runtime_error naming the
 /// plugin and dlerror() when it cannot be loaded.
 const GmshApi& gmsh_api();
