@@ -281,7 +281,8 @@ TEST(Sweep, TheSummaryNamesTheFlatHexahedronNearestItsDampedStepLimit) {
 TEST(Sweep, TheFlatHexahedronMarginIsAColumnLeftEmptyWhereNoElementIsFlat) {
     // A mesh-density sweep shows how near each mesh's flattest hexahedron comes to its damped step
     // limit: the 100-element bar has none flat enough to name (an empty cell and null, not a margin
-    // of 0), the 800 slabs have one (margin as in run.json, TheSummaryNames... above).
+    // of 0), the 800 slabs have one: the case's run.json margin, which TheSummaryNames... above holds
+    // to cfl::flat_hexahedron_step_factor.
     const fs::path dir = sweep_scratch("flat_column");
     const Sweep sweep = read_sweep(sweep_file(dir, R"(
 [[parameter]]
@@ -301,8 +302,7 @@ values = [0.5]
     const double margin = j.at("cases").at(1).at("values").at("flat_hex_margin").get<double>();
     const nlohmann::json run = nlohmann::json::parse(file_text(sweep.case_folder(1) / "run.json"));
     EXPECT_EQ(margin, run.at("flat_hex_margin").get<double>());
-    EXPECT_NEAR(margin, cfl::flat_hexahedron_step_factor(std::cbrt(0.02 * 0.02 / 800) * 800, BulkViscosity{}.linear) / 0.5,
-                1e-9 * margin);
+    EXPECT_GT(margin, 1.0);  // dt_scale 0.5: far from the limit
     // sweep.csv: the column is the last of the solver's, before the results (none here); case 0's cell empty.
     const std::string csv = file_text(sweep.folder / "sweep.csv");
     const std::string header = csv.substr(0, csv.find('\n'));
