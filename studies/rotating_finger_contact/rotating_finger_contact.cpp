@@ -18,10 +18,16 @@
 //     3 s, Table 3-6);
 //   - reaction force: the sensor reaction filtered with SAE J211 CFC 60 (README: why);
 //   - object stress also as a patch mean around the contact point, which converges with the object
-//     mesh (issue 13 item 3); ROTFINGER_STATIC runs the static mesh convergence studies instead.
+//     mesh (issue 13 item 3).
+//
+// Side runs (README, "Side runs"; each writes under build/results/rotating_finger_contact/<run>/, never
+// over the study run's judged files):
+//   --case <name> [end time]     one case of Table 3-7 alone, no checks; with --finger-h, --mapped,
+//                                --object-h, --perturb, --two-way for the mesh and robustness studies
+//   --static-convergence [k]     the static mesh convergence of the finger's root stress and the
+//                                object's stress (--finger-only: the finger's alone)
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
 #include <fmt/format.h>
 #include <fstream>
 #include <map>
@@ -31,14 +37,20 @@
 #include "assembly/model.hpp"
 #include "assembly/static_solve.hpp"
 #include "check/cases.hpp"
+#include "check/side_run.hpp"
 #include "check/study.hpp"
 #include "contact/contact.hpp"
 #include "contact/explicit_contact.hpp"
 #include "core/error.hpp"
+#include "core/program.hpp"
 #include "core/units.hpp"
 #include "damping/signal.hpp"
 #include "element/hex8_explicit.hpp"
 #include "explicit/solver.hpp"
+#include "input/arguments.hpp"
+#include "input/numbers.hpp"
+#include "io/atomic_file.hpp"
+#include "io/run_folder.hpp"
 #include "io/table.hpp"
 #include "mesh/finger.hpp"
 
@@ -81,6 +93,38 @@ struct Case {
     double object_alpha = 0;     // 1/s, mass damping on the object (Table 3-6 damps the finger only)
 };
 
+/// The model's meshes and contact: the study run's, or a --case side run's variant of them (its
+/// options; the convergence and robustness studies of the README).
+struct Variant {
+    double finger_h = 6e-3;   // --finger-h: the finger's target element length [m]
+    int mapped = 0;           // --mapped n: the finger's section as one mapped n x n block (the thesis's
+                              // Case A layout for n = 5: Table 3-5's 1275 elements are 5 x 5 x 51),
+                              // round(L / h) layers, instead of the O-grid
+    double object_h = 12e-3;  // --object-h: the aluminium object's element length [m]
+    double perturb = 0;       // --perturb eps: the drum speed x (1 + eps), a round-off-sized change
+                              // that shows which outputs are robust (README: the raw stress maxima are not)
+    bool two_way = false;     // --two-way: symmetric contact (the object's nodes on the finger's faces too)
+};
+
+/// Table 3-7's cases, the general case first, each run to at most `end` [s].
+std::vector<Case> table_3_7_cases(double end) {
+    // Every case with the deformable object on its sensor (Table 3-5: the object is a solid); the
+    // rigid object (e_object 0) chattered (README).
+    return {
+        {"alpha-7.5", 7.5, 6.1e6, 69e9, end, true, true},
+        {"alpha-1", 1, 6.1e6, 69e9, end, true},
+        {"alpha-20", 20, 6.1e6, 69e9, end},
+        {"alpha-50", 50, 6.1e6, 69e9, end},
+        {"alpha-180", 180, 6.1e6, 69e9, end, true},
+        {"alpha-600", 600, 6.1e6, 69e9, end, true},
+        {"E-finger-4.2", 7.5, 4.2e6, 69e9, end},
+        {"E-object-6.1MPa", 7.5, 6.1e6, 6.1e6, end},
+        // Not a thesis case: the soft object with its own motion damped (50 1/s), to test whether
+        // its sway on the sensor disc is what lifts the sensor force above the contact force.
+        {"E-object-6.1MPa-damped", 7.5, 6.1e6, 6.1e6, end, false, false, false, 50},
+    };
+}
+
 struct Result {
     Case c;
     // Rows every 2 ms: CFC 60 reaction |F|, Fx, Fy and CFC 60 stress maxima at the row time; the raw
@@ -107,7 +151,7 @@ damping::SampledSignal cfc60(std::vector<double> bins, double bin) {
 }
 
 
-// --- Static mesh convergence (issue 13 items 2 and 3; ROTFINGER_STATIC=1, README) -----------------
+// --- Static mesh convergence (issue 13 items 2 and 3; the --static-convergence side run, README) ---
 //
 // The dynamic runs report element-centre stresses of one-point hexahedra, as LS-DYNA does: the
 // value of the element's mean strain, i.e. at its centre. How that value depends on the mesh is a
@@ -181,7 +225,8 @@ ElementField solve_one_point_static(const Mesh& mesh, const ElasticMaterial& m, 
 // the finger" is on that mesh) over Euler-Bernoulli's surface stress M b / I, and the largest
 // centre stress of the layer nearest mid-stub over beam theory at that element's centroid, M y_c / I
 // (how well the element represents the bending field away from the clamp).
-void finger_root_convergence(const std::filesystem::path& out) {
+// `finest`: the mapped meshes down to h / 2^(finest - 1) (1..3).
+void finger_root_convergence(const std::filesystem::path& out, int finest) {
     // M small enough that the linear solution's rotations (kappa z ~ 1e-5 rad) add no spurious
     // stretch when the element's (large-deformation) kernel evaluates its stress; stresses per N m.
     const double layer = 3.984e-3, length = 8 * layer, M = 1e-6;
@@ -195,8 +240,7 @@ void finger_root_convergence(const std::filesystem::path& out) {
     std::vector<Level> levels;
     levels.push_back({"O-grid 6 mm (study)", fem::finger::hex_finger(stub, 6e-3)});
     levels.push_back({"O-grid 3 mm", fem::finger::hex_finger(stub, 3e-3)});
-    const int finest = std::atoi(std::getenv("ROTFINGER_STATIC"));  // 1: h, 2: also h/2, 3: also h/4
-    for (int k = 1; k <= std::clamp(finest, 1, 3); ++k)
+    for (int k = 1; k <= finest; ++k)
         levels.push_back({fmt::format("mapped {0} x {0}, layer {1:.3f} mm", 5 << (k - 1), 1e3 * layer / (1 << (k - 1))),
                           fem::finger::hex_finger(stub, fem::finger::mapped_cross_section(5 << (k - 1)), 8 << (k - 1))});
     io::Table t;
@@ -307,17 +351,14 @@ void object_stress_convergence(const std::filesystem::path& out) {
     io::write_dat(out / "static-object.dat", t);
 }
 
-Result run_case(const Case& c, double finger_h, const std::filesystem::path& out) {
+Result run_case(const Case& c, const Variant& v, const std::filesystem::path& out) {
     Result r;
     r.c = c;
     const auto rubber = ElasticMaterial::make("rubber", c.e_finger, 0.49, 1000);
-    // ROTFINGER_MAPPED=<n>: the single mapped n x n cross-section (the thesis's Case A layout for
-    // n = 5: Table 3-5's 1275 elements are 5 x 5 x 51) with round(L / h) layers, instead of the O-grid.
     const fem::finger::EllipticCylinder shape{12e-3, 8.45e-3, kFingerLength};
-    Mesh finger = std::getenv("ROTFINGER_MAPPED")
-                      ? fem::finger::hex_finger(shape, fem::finger::mapped_cross_section(std::atoi(std::getenv("ROTFINGER_MAPPED"))),
-                                                static_cast<int>(std::lround(kFingerLength / finger_h)), "finger")
-                      : fem::finger::hex_finger(shape, finger_h, "finger");
+    Mesh finger = v.mapped > 0 ? fem::finger::hex_finger(shape, fem::finger::mapped_cross_section(v.mapped),
+                                                         static_cast<int>(std::lround(kFingerLength / v.finger_h)), "finger")
+                               : fem::finger::hex_finger(shape, v.finger_h, "finger");
     // Leading (+y local: minor axis, becomes +tangential) and trailing edges: per layer the nodes
     // with the largest and smallest local y.
     std::map<long, std::pair<int, int>> edges;  // layer key -> (max x node, min x node)
@@ -332,24 +373,18 @@ Result run_case(const Case& c, double finger_h, const std::filesystem::path& out
     // y, major axis x -> out of plane -z (README: the mounting is reconstructed).
     for (auto& p : finger.nodes) p = Vec3(kDrumRadius + p.z(), p.y(), -p.x());
     const int n_finger = finger.node_count();
-    // ROTFINGER_OBJECT_H=<m> sets the deformable object's element length (convergence runs).
-    const double object_h = std::getenv("ROTFINGER_OBJECT_H") ? std::atof(std::getenv("ROTFINGER_OBJECT_H")) : 12e-3;
-    Mesh object = fem::finger::hex_finger({kObjA, kObjB, kObjT}, c.e_object > 0 ? object_h : 6e-3, "object");
+    Mesh object = fem::finger::hex_finger({kObjA, kObjB, kObjT}, c.e_object > 0 ? v.object_h : 6e-3, "object");
     object.translate(kObjectCentre + Vec3(0, 0, -0.5 * kObjT));
     Mesh mesh = finger;
     mesh.append(object);
     ExplicitModel model(mesh);
     model.add_hex8("finger", rubber);
     model.set_mass_damping("finger", c.alpha);
-    // ROTFINGER_PERTURB=<eps> scales the drum speed by (1 + eps): a round-off-sized perturbation shows
-    // which outputs are robust (README: the raw stress maxima are not).
-    const double perturb = std::getenv("ROTFINGER_PERTURB") ? std::atof(std::getenv("ROTFINGER_PERTURB")) : 0.0;
     model.prescribe_motion(finger.node_set("root"),
-                           RigidMotion::rotation(Vec3::Zero(), Vec3::UnitZ(), Curve::constant(kOmega * (1 + perturb))));
+                           RigidMotion::rotation(Vec3::Zero(), Vec3::UnitZ(), Curve::constant(kOmega * (1 + v.perturb))));
     ContactOptions co;
     co.friction = {0.6, 0.6, 0.0};  // Table 3-6
-    // ROTFINGER_TWO_WAY=1: symmetric contact (the object's nodes against the finger's faces too).
-    co.two_way = std::getenv("ROTFINGER_TWO_WAY") != nullptr;
+    co.two_way = v.two_way;
     std::vector<int> sensor;
     ElasticMaterial al = ElasticMaterial::make("object", c.e_object > 0 ? c.e_object : 69e9, 0.33, 2700);
     ContactInterface* ci = nullptr;
@@ -556,134 +591,212 @@ void write_outlines(const std::filesystem::path& path, const Result& r) {
     }
 }
 
+// --- Side runs (README, "Side runs") ------------------------------------------------------------
+
+const char* const kSideRunUsage =
+    "side runs (each writes under build/results/rotating_finger_contact/<run>/, or --results DIR):\n"
+    "  --case <name> [end time]      one case of Table 3-7 alone, no checks (folder case-<name>): alpha-7.5,\n"
+    "                                alpha-1, alpha-20, alpha-50, alpha-180, alpha-600, E-finger-4.2,\n"
+    "                                E-object-6.1MPa, E-object-6.1MPa-damped; end time in s (default 3,\n"
+    "                                the run stops 50 ms after contact)\n"
+    "      --finger-h M              the finger's target element length [m] (default 6e-3)\n"
+    "      --mapped N                the finger's section as one mapped N x N block, round(L / h) layers\n"
+    "                                (the thesis's mesh: --mapped 5 --finger-h 3.984e-3)\n"
+    "      --object-h M              the aluminium object's element length [m] (default 12e-3)\n"
+    "      --perturb EPS             the drum speed x (1 + EPS) (|EPS| <= 1e-3: a robustness test)\n"
+    "      --two-way                 symmetric contact (the object's nodes on the finger's faces too)\n"
+    "  --static-convergence [k]      the static mesh convergence of the object's stress (12, 6, 3 mm) and of\n"
+    "                                the finger's root stress (O-grids 6 and 3 mm, the thesis's mapped mesh\n"
+    "                                and its halves down to h / 2^(k-1); k 1..3, default 1)\n"
+    "      --finger-only             the finger's root stress alone\n"
+    "  --quiet                       no progress lines on stderr\n";
+
+/// A side run's command line (check::read_side_run) with its options read.
+struct SideRunCommand : check::SideRun {
+    Variant variant;
+    bool finger_only = false;
+};
+
+SideRunCommand parse_side_run(int argc, char** argv) {
+    SideRunCommand c;
+    static_cast<check::SideRun&>(c) = check::read_side_run(
+        argc, argv, "rotating_finger_contact", kSideRunUsage, {"--case", "--static-convergence"},
+        {{"--finger-h", "--case"},
+         {"--mapped", "--case"},
+         {"--object-h", "--case"},
+         {"--perturb", "--case"},
+         {"--two-way", "--case"},
+         {"--finger-only", "--static-convergence"}},
+        [&](input::Arguments& args) {
+            // Bounds: an element longer than the finger's thickness or the object's, or a mapped
+            // section finer than the finger runs can afford, is a typo, not a study.
+            if (args.is("--finger-h")) c.variant.finger_h = args.real(input::Range::closed(0.5e-3, 17e-3));
+            else if (args.is("--mapped")) c.variant.mapped = args.integer<int>({.min = 1, .max = 40});
+            else if (args.is("--object-h")) c.variant.object_h = args.real(input::Range::closed(1e-3, 50e-3));
+            else if (args.is("--perturb")) c.variant.perturb = args.real(input::Range::closed(-1e-3, 1e-3));
+            else if (args.is("--two-way")) c.variant.two_way = true;
+            else if (args.is("--finger-only")) c.finger_only = true;
+        });
+    return c;
+}
+
+// --case <name> [end time]: one case alone, no checks; its files as the study run's for the case.
+int case_side_run(const SideRunCommand& c) {
+    const std::vector<std::string>& op = c.operands;
+    c.at_most_operands(2, "case, end time");
+    if (op.empty()) throw InputError("--case: name the case (rotating_finger_contact --help lists them)");
+    const double end = op.size() > 1 ? input::parse_real(op[1], {"command line", 0, "--case (end time)"}, input::Range::positive()) : 3.0;
+    const std::vector<Case> cases = table_3_7_cases(end);
+    std::vector<std::string> names;
+    for (const Case& k : cases) names.push_back(k.name);
+    const std::string name = input::check_choice(op[0], {"command line", 0, "--case (Table 3-7 case)"}, names);
+    const Case& which = *std::find_if(cases.begin(), cases.end(), [&](const Case& k) { return k.name == name; });
+    io::RunFolder out(check::side_run_folder("rotating_finger_contact", "case-" + name, c.results), "rotating_finger_contact --case");
+    const Result r = run_case(which, c.variant, out.staging());
+    write_series(out.staging() / fmt::format("case-{}.dat", name), r);
+    if (which.snapshots) write_outlines(out.staging() / fmt::format("outline-{}.dat", name), r);
+    io::write_text_file(out.staging() / "run.json", r.summary.to_json().dump(2) + "\n");
+    fmt::print("{}\n", r.summary.text());
+    fmt::print("{}: F max {:.3f} N (CFC 60; 2 ms-mean maximum {:.3f} N), contact force max {:.3f} N, sigma finger max {:.3f} MPa, "
+               "sigma object max {:.3f} MPa (patch mean {:.3f} MPa), contact {:.3f}..{:.3f} s\n",
+               name, r.f_max, r.f_mean2ms_max, r.f_contact_max, r.s_finger_max / 1e6, r.s_object_max / 1e6, r.s_patch_max / 1e6,
+               r.t_first, r.t_last);
+    out.commit();
+    fmt::print("results: {}\n", out.path().string());
+    return 0;
+}
+
+// --static-convergence [k]: the static mesh convergence studies alone (README), no checks.
+int static_convergence_side_run(const SideRunCommand& c) {
+    c.at_most_operands(1, "finest level");
+    const int finest = c.operands.empty() ? 1
+                                          : input::parse_integer<int>(c.operands[0], {"command line", 0, "--static-convergence (finest level)"},
+                                                                      {.min = 1, .max = 3});
+    io::RunFolder out(check::side_run_folder("rotating_finger_contact", "static-convergence", c.results),
+                      "rotating_finger_contact --static-convergence");
+    if (!c.finger_only) object_stress_convergence(out.staging());
+    finger_root_convergence(out.staging(), finest);
+    out.commit();
+    fmt::print("results: {}\n", out.path().string());
+    return 0;
+}
+
+// The study run: Table 3-7's nine cases at once, their checks and figures.
+void run(check::Study& study) {
+    const auto& out = study.results_dir();
+    std::vector<Case> cases = table_3_7_cases(3.0);
+    for (auto& c : cases) c.full_rotation = study.full();
+    // The eight runs are independent: check::run_cases runs them at once on the machine's cores
+    // (about 35 s of CPU each; their results, and so every check, are a serial run's bits).
+    check::CaseOptions options;
+    for (std::size_t k = 0; k < cases.size(); ++k)
+        if (cases[k].vtu) options.writes_files.push_back(static_cast<int>(k));
+    std::vector<Result> runs = check::run_cases<Result>(
+        study, static_cast<int>(cases.size()), [&](int k) { return run_case(cases[k], Variant{}, out); }, options);
+    std::map<std::string, Result> res;
+    io::Table instants;  // Fig 3-30
+    std::vector<double> alphas, firsts, lasts;
+    for (std::size_t k = 0; k < cases.size(); ++k) {
+        const Case& c = cases[k];
+        Result& r = res[c.name] = std::move(runs[k]);
+        study.record_run({c.name, r.summary.to_json()});
+        write_series(out / fmt::format("case-{}.dat", c.name), r);
+        if (c.snapshots) write_outlines(out / fmt::format("outline-{}.dat", c.name), r);
+        if (c.e_finger == 6.1e6 && c.e_object == 69e9)
+            alphas.push_back(c.alpha), firsts.push_back(r.t_first), lasts.push_back(r.t_last);
+    }
+    instants.add("alpha_per_s", alphas).add("contact_start_s", firsts).add("contact_end_s", lasts);
+    io::write_dat(out / "contact-instants.dat", instants);
+
+    const Result& b = res.at("alpha-7.5");
+    const auto note = [](const Result& r) {
+        return fmt::format("2 ms-mean maximum {:.2f} N; contact {:.3f}..{:.3f} s", r.f_mean2ms_max, r.t_first,
+                           r.t_last);
+    };
+    study.check("table-3-7/base/F-reaction-max", b.f_max, note(b));
+    study.check("table-3-7/base/sigma-finger-max", b.s_finger_max / 1e6);
+    study.check("table-3-7/E-object-69GPa/sigma-object-max", b.s_object_max / 1e6);
+    const std::vector<std::string> others = {"alpha-1",   "alpha-20",     "alpha-50",       "alpha-180",
+                                             "alpha-600", "E-finger-4.2", "E-object-6.1MPa"};
+    std::vector<double> F, sf;
+    for (const auto& name : others) {
+        if (name != "E-object-6.1MPa") F.push_back(res.at(name).f_max);
+        sf.push_back(res.at(name).s_finger_max / 1e6);
+    }
+    study.check("table-3-7/cases/F-reaction-max", F);
+    study.check("table-3-7/cases/sigma-finger-max", sf);
+    const Result& soft = res.at("E-object-6.1MPa");
+    study.check("table-3-7/E-object-6.1MPa/F-reaction-max", soft.f_max, note(soft));
+    study.check("table-3-7/E-object-6.1MPa/F-contact-max", soft.f_contact_max);
+    const Result& damped = res.at("E-object-6.1MPa-damped");
+    study.check("table-3-7/E-object-6.1MPa/sway-test", damped.f_max / damped.f_contact_max,
+                fmt::format("object damped at 50 1/s: sensor {:.2f} N, contact {:.2f} N; undamped (the judged case): "
+                            "sensor {:.2f} N, contact {:.2f} N",
+                            damped.f_max, damped.f_contact_max, soft.f_max, soft.f_contact_max));
+    std::vector<double> so_al, so_other;
+    for (const char* name : {"alpha-1", "alpha-20", "alpha-50", "E-finger-4.2"})
+        so_al.push_back(res.at(name).s_object_max / 1e6);
+    for (const char* name : {"alpha-180", "alpha-600", "E-object-6.1MPa"})
+        so_other.push_back(res.at(name).s_object_max / 1e6);
+    study.check("table-3-7/cases/sigma-object-max", so_al);
+    study.check("table-3-7/cases/sigma-object-max-not-reproduced", so_other);
+    std::vector<double> patch;
+    for (const char* name : {"alpha-7.5", "alpha-1", "alpha-20", "alpha-50", "alpha-180", "alpha-600", "E-finger-4.2", "E-object-6.1MPa"})
+        patch.push_back(res.at(name).s_patch_max / 1e6);
+    study.check("table-3-7/cases/sigma-object-patch", patch);
+
+    const Result& a180 = res.at("alpha-180");
+    const Result& a600 = res.at("alpha-600");
+    const Result& ef = res.at("E-finger-4.2");
+    const Result& so = res.at("E-object-6.1MPa");
+    bool same = true;
+    std::string low;
+    for (const char* name : {"alpha-1", "alpha-20", "alpha-50"}) {
+        const double ratio = res.at(name).f_max / b.f_max;
+        same = same && std::abs(ratio - 1) < 0.08;
+        low += fmt::format("{}F_{}/F_7.5 = {:.3f}", low.empty() ? "" : ", ", name, ratio);
+    }
+    study.trend_holds("table-3-7/alpha/F-independent-1-to-50", same, low);
+    study.trend_holds("table-3-7/alpha/F-independent-up-to-180", std::abs(a180.f_max / b.f_max - 1) < 0.08,
+                      fmt::format("F180 / F7.5 = {:.3f} / {:.3f} = {:.3f}", a180.f_max, b.f_max, a180.f_max / b.f_max),
+                      fmt::format("2 ms means: {:.3f} / {:.3f}", a180.f_mean2ms_max, b.f_mean2ms_max));
+    study.trend_holds("table-3-7/alpha/F-lower-at-600", a600.f_max < 0.95 * b.f_max,
+                      fmt::format("F600 / F7.5 = {:.3f} / {:.3f} = {:.3f}", a600.f_max, b.f_max, a600.f_max / b.f_max));
+    const double s50 = res.at("alpha-50").s_finger_max, s180 = a180.s_finger_max, s600 = a600.s_finger_max;
+    study.trend_holds("table-3-7/alpha/sigma-finger-rises-above-50", s50 < s180 && s180 < s600,
+                      fmt::format("sigma_finger {:.3f}, {:.3f}, {:.3f} MPa at alpha 50, 180, 600", s50 / 1e6,
+                                  s180 / 1e6, s600 / 1e6));
+    const double d_b = b.t_last - b.t_first, d_600 = a600.t_last - a600.t_first;
+    study.trend_holds("fig-3-30/contact-shorter-at-high-alpha", d_600 < d_b,
+                      fmt::format("contact {:.3f}..{:.3f} s ({:.3f} s) at alpha 600 vs {:.3f}..{:.3f} s ({:.3f} s) at 7.5",
+                                  a600.t_first, a600.t_last, d_600, b.t_first, b.t_last, d_b),
+                      "contact = the contact force above 2 % of its maximum (2 ms means)");
+    study.trend_holds("table-3-7/E-finger/F-rises", ef.f_max < 0.9 * b.f_max,
+                      fmt::format("F(4.2 MPa) / F(6.1 MPa) = {:.3f} / {:.3f} = {:.3f}", ef.f_max, b.f_max, ef.f_max / b.f_max));
+    study.trend_holds("table-3-7/E-object/stress-collapses", so.s_object_max < 0.2 * b.s_object_max,
+                      fmt::format("sigma_object {:.3f} vs {:.3f} MPa", so.s_object_max / 1e6, b.s_object_max / 1e6));
+    study.trend_holds("table-3-7/E-object/force-stays", std::abs(so.f_max / b.f_max - 1) < 0.1,
+                      fmt::format("F {:.3f} vs {:.3f} N (sensor, CFC 60)", so.f_max, b.f_max),
+                      fmt::format("contact force {:.3f} vs {:.3f} N; 2 ms means of the sensor {:.3f} vs {:.3f} N",
+                                  so.f_contact_max, b.f_contact_max, so.f_mean2ms_max, b.f_mean2ms_max));
+    study.plot();
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-    return check::run_study("rotating_finger_contact", argc, argv, [](check::Study& study) {
-        const auto& out = study.results_dir();
-        if (std::getenv("ROTFINGER_STATIC")) {  // the static mesh convergence alone (README), no checks
-            if (!std::getenv("ROTFINGER_STATIC_FINGER_ONLY")) object_stress_convergence(out);
-            finger_root_convergence(out);
-            return;
-        }
-        // Development switches: ROTFINGER_ONLY=<case> runs one case without checks; ROTFINGER_END=<s>
-        // caps the simulated time; ROTFINGER_H=<m> sets the finger element length (convergence runs);
-        // ROTFINGER_MAPPED=<n> meshes the finger's section as one mapped n x n block (run_case).
-        const double h = std::getenv("ROTFINGER_H") ? std::atof(std::getenv("ROTFINGER_H")) : 6e-3;
-        const double end = std::getenv("ROTFINGER_END") ? std::atof(std::getenv("ROTFINGER_END")) : 3.0;
-        // Every case with the deformable object on its sensor (Table 3-5: the object is a solid); the
-        // rigid object (e_object 0) chattered (README). Table 3-7's rows; the general case first.
-        std::vector<Case> cases = {
-            {"alpha-7.5", 7.5, 6.1e6, 69e9, end, true, true},
-            {"alpha-1", 1, 6.1e6, 69e9, end, true},
-            {"alpha-20", 20, 6.1e6, 69e9, end},
-            {"alpha-50", 50, 6.1e6, 69e9, end},
-            {"alpha-180", 180, 6.1e6, 69e9, end, true},
-            {"alpha-600", 600, 6.1e6, 69e9, end, true},
-            {"E-finger-4.2", 7.5, 4.2e6, 69e9, end},
-            {"E-object-6.1MPa", 7.5, 6.1e6, 6.1e6, end},
-            // Not a thesis case: the soft object with its own motion damped (50 1/s), to test whether
-            // its sway on the sensor disc is what lifts the sensor force above the contact force.
-            {"E-object-6.1MPa-damped", 7.5, 6.1e6, 6.1e6, end, false, false, false, 50},
-        };
-        for (auto& c : cases) c.full_rotation = study.full();
-        if (const char* only = std::getenv("ROTFINGER_ONLY")) {
-            std::erase_if(cases, [&](const Case& c) { return c.name != only; });
-        }
-        // The eight runs are independent: check::run_cases runs them at once on the machine's cores
-        // (about 35 s of CPU each; their results, and so every check, are a serial run's bits).
-        check::CaseOptions options;
-        for (std::size_t k = 0; k < cases.size(); ++k)
-            if (cases[k].vtu) options.writes_files.push_back(static_cast<int>(k));
-        std::vector<Result> runs = check::run_cases<Result>(
-            study, static_cast<int>(cases.size()), [&](int k) { return run_case(cases[k], h, out); }, options);
-        std::map<std::string, Result> res;
-        io::Table instants;  // Fig 3-30
-        std::vector<double> alphas, firsts, lasts;
-        for (std::size_t k = 0; k < cases.size(); ++k) {
-            const Case& c = cases[k];
-            Result& r = res[c.name] = std::move(runs[k]);
-            study.record_run({c.name, r.summary.to_json()});
-            write_series(out / fmt::format("case-{}.dat", c.name), r);
-            if (c.snapshots) write_outlines(out / fmt::format("outline-{}.dat", c.name), r);
-            if (c.e_finger == 6.1e6 && c.e_object == 69e9)
-                alphas.push_back(c.alpha), firsts.push_back(r.t_first), lasts.push_back(r.t_last);
-        }
-        instants.add("alpha_per_s", alphas).add("contact_start_s", firsts).add("contact_end_s", lasts);
-        io::write_dat(out / "contact-instants.dat", instants);
-        if (std::getenv("ROTFINGER_ONLY")) return;
-
-        const Result& b = res.at("alpha-7.5");
-        const auto note = [](const Result& r) {
-            return fmt::format("2 ms-mean maximum {:.2f} N; contact {:.3f}..{:.3f} s", r.f_mean2ms_max, r.t_first,
-                               r.t_last);
-        };
-        study.check("table-3-7/base/F-reaction-max", b.f_max, note(b));
-        study.check("table-3-7/base/sigma-finger-max", b.s_finger_max / 1e6);
-        study.check("table-3-7/E-object-69GPa/sigma-object-max", b.s_object_max / 1e6);
-        const std::vector<std::string> others = {"alpha-1",   "alpha-20",     "alpha-50",       "alpha-180",
-                                                 "alpha-600", "E-finger-4.2", "E-object-6.1MPa"};
-        std::vector<double> F, sf;
-        for (const auto& name : others) {
-            if (name != "E-object-6.1MPa") F.push_back(res.at(name).f_max);
-            sf.push_back(res.at(name).s_finger_max / 1e6);
-        }
-        study.check("table-3-7/cases/F-reaction-max", F);
-        study.check("table-3-7/cases/sigma-finger-max", sf);
-        const Result& soft = res.at("E-object-6.1MPa");
-        study.check("table-3-7/E-object-6.1MPa/F-reaction-max", soft.f_max, note(soft));
-        study.check("table-3-7/E-object-6.1MPa/F-contact-max", soft.f_contact_max);
-        const Result& damped = res.at("E-object-6.1MPa-damped");
-        study.check("table-3-7/E-object-6.1MPa/sway-test", damped.f_max / damped.f_contact_max,
-                    fmt::format("object damped at 50 1/s: sensor {:.2f} N, contact {:.2f} N; undamped (the judged case): "
-                                "sensor {:.2f} N, contact {:.2f} N",
-                                damped.f_max, damped.f_contact_max, soft.f_max, soft.f_contact_max));
-        std::vector<double> so_al, so_other;
-        for (const char* name : {"alpha-1", "alpha-20", "alpha-50", "E-finger-4.2"})
-            so_al.push_back(res.at(name).s_object_max / 1e6);
-        for (const char* name : {"alpha-180", "alpha-600", "E-object-6.1MPa"})
-            so_other.push_back(res.at(name).s_object_max / 1e6);
-        study.check("table-3-7/cases/sigma-object-max", so_al);
-        study.check("table-3-7/cases/sigma-object-max-not-reproduced", so_other);
-        std::vector<double> patch;
-        for (const char* name : {"alpha-7.5", "alpha-1", "alpha-20", "alpha-50", "alpha-180", "alpha-600", "E-finger-4.2", "E-object-6.1MPa"})
-            patch.push_back(res.at(name).s_patch_max / 1e6);
-        study.check("table-3-7/cases/sigma-object-patch", patch);
-
-        const Result& a180 = res.at("alpha-180");
-        const Result& a600 = res.at("alpha-600");
-        const Result& ef = res.at("E-finger-4.2");
-        const Result& so = res.at("E-object-6.1MPa");
-        bool same = true;
-        std::string low;
-        for (const char* name : {"alpha-1", "alpha-20", "alpha-50"}) {
-            const double ratio = res.at(name).f_max / b.f_max;
-            same = same && std::abs(ratio - 1) < 0.08;
-            low += fmt::format("{}F_{}/F_7.5 = {:.3f}", low.empty() ? "" : ", ", name, ratio);
-        }
-        study.trend_holds("table-3-7/alpha/F-independent-1-to-50", same, low);
-        study.trend_holds("table-3-7/alpha/F-independent-up-to-180", std::abs(a180.f_max / b.f_max - 1) < 0.08,
-                          fmt::format("F180 / F7.5 = {:.3f} / {:.3f} = {:.3f}", a180.f_max, b.f_max, a180.f_max / b.f_max),
-                          fmt::format("2 ms means: {:.3f} / {:.3f}", a180.f_mean2ms_max, b.f_mean2ms_max));
-        study.trend_holds("table-3-7/alpha/F-lower-at-600", a600.f_max < 0.95 * b.f_max,
-                          fmt::format("F600 / F7.5 = {:.3f} / {:.3f} = {:.3f}", a600.f_max, b.f_max, a600.f_max / b.f_max));
-        const double s50 = res.at("alpha-50").s_finger_max, s180 = a180.s_finger_max, s600 = a600.s_finger_max;
-        study.trend_holds("table-3-7/alpha/sigma-finger-rises-above-50", s50 < s180 && s180 < s600,
-                          fmt::format("sigma_finger {:.3f}, {:.3f}, {:.3f} MPa at alpha 50, 180, 600", s50 / 1e6,
-                                      s180 / 1e6, s600 / 1e6));
-        const double d_b = b.t_last - b.t_first, d_600 = a600.t_last - a600.t_first;
-        study.trend_holds("fig-3-30/contact-shorter-at-high-alpha", d_600 < d_b,
-                          fmt::format("contact {:.3f}..{:.3f} s ({:.3f} s) at alpha 600 vs {:.3f}..{:.3f} s ({:.3f} s) at 7.5",
-                                      a600.t_first, a600.t_last, d_600, b.t_first, b.t_last, d_b),
-                          "contact = the contact force above 2 % of its maximum (2 ms means)");
-        study.trend_holds("table-3-7/E-finger/F-rises", ef.f_max < 0.9 * b.f_max,
-                          fmt::format("F(4.2 MPa) / F(6.1 MPa) = {:.3f} / {:.3f} = {:.3f}", ef.f_max, b.f_max, ef.f_max / b.f_max));
-        study.trend_holds("table-3-7/E-object/stress-collapses", so.s_object_max < 0.2 * b.s_object_max,
-                          fmt::format("sigma_object {:.3f} vs {:.3f} MPa", so.s_object_max / 1e6, b.s_object_max / 1e6));
-        study.trend_holds("table-3-7/E-object/force-stays", std::abs(so.f_max / b.f_max - 1) < 0.1,
-                          fmt::format("F {:.3f} vs {:.3f} N (sensor, CFC 60)", so.f_max, b.f_max),
-                          fmt::format("contact force {:.3f} vs {:.3f} N; 2 ms means of the sensor {:.3f} vs {:.3f} N",
-                                      so.f_contact_max, b.f_contact_max, so.f_mean2ms_max, b.f_mean2ms_max));
-        study.plot();
+    // The side runs' command line is read first (strictly); without a side run the study reads its own.
+    SideRunCommand c;
+    if (const int status = run_program("rotating_finger_contact", [&] {
+            c = parse_side_run(argc, argv);
+            return 0;
+        });
+        status != 0)
+        return status;
+    if (c.mode.empty()) return check::run_study("rotating_finger_contact", argc, argv, run);
+    const std::string program = "rotating_finger_contact " + c.mode;
+    return run_program(program.c_str(), [&] {
+        if (c.mode == "--case") return case_side_run(c);
+        return static_convergence_side_run(c);
     });
 }

@@ -5,12 +5,14 @@
 // <serial dir> must exist under <other dir>; JSON files (runs.json, a run's run.json, fem-sweep's
 // sweep.json) are compared with the facts of the run's environment removed from each run's values
 // (wall and CPU times, rates, thread counts, the timing split), tables (.dat, .csv with a header
-// line) without the columns so named. Files named by --skip (a run's summary.txt, whose text quotes
+// line) without the columns so named, Markdown files (a study's table-3-2.md) without the columns of
+// their tables whose heading names a wall time or a rate. Files named by --skip (a run's summary.txt, whose text quotes
 // its timings) are only required to exist. With figure folders: every file of <other figures dir> must equal its namesake in <serial
 // figures dir> (which holds every study's figures). Prints each difference; exit 1 when any.
 // (Environment keys: the explicit summary's wall_s, element_cycles_per_s, threads, timing_s,
 // contact_share and its contact interfaces' search_s and forces_s; a study's own wall and set-up
-// times.)
+// times, topology_cases' s_per_iteration. Markdown columns: a heading that starts with "wall s" or
+// names element-cycles/s, as finger_damping's Table 3-2 of wall times.)
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -33,7 +35,8 @@ std::string read(const fs::path& p) {
 // the schedule, not of the results.
 bool environment_key(const std::string& key) {
     static const std::set<std::string> keys = {"wall_s",   "cpu_s",         "setup_s",  "element_cycles_per_s",
-                                               "threads",  "contact_share", "search_s", "forces_s"};
+                                               "threads",  "contact_share", "search_s", "forces_s",
+                                               "s_per_iteration"};
     return keys.count(key) > 0 || key.rfind("timing", 0) == 0 || key.rfind("time_split", 0) == 0;
 }
 
@@ -55,6 +58,18 @@ int differences = 0;
 void differ(const std::string& what) {
     ++differences;
     std::cout << "DIFFERS: " << what << '\n';
+}
+
+// A text's lines (without their line ends).
+std::vector<std::string> lines_of(const std::string& text) {
+    std::vector<std::string> lines;
+    std::string line;
+    for (char c : text) {
+        if (c == '\n') lines.push_back(line), line.clear();
+        else line += c;
+    }
+    if (!line.empty()) lines.push_back(line);
+    return lines;
 }
 
 // The fields of one line of a table: whitespace-separated (.dat, '#' header), or comma-separated
@@ -81,13 +96,7 @@ std::vector<std::string> fields(const std::string& line, bool csv) {
 
 // A table's text without its environment columns (named in the first line).
 std::string without_environment_columns(const std::string& text, bool csv) {
-    std::vector<std::string> lines;
-    std::string line;
-    for (char c : text) {
-        if (c == '\n') lines.push_back(line), line.clear();
-        else line += c;
-    }
-    if (!line.empty()) lines.push_back(line);
+    const std::vector<std::string> lines = lines_of(text);
     if (lines.empty()) return text;
     std::vector<std::string> header = fields(lines[0], csv);
     if (!csv && !header.empty() && header[0] == "#") header.erase(header.begin());
@@ -105,6 +114,54 @@ std::string without_environment_columns(const std::string& text, bool csv) {
     return out;
 }
 
+// A Markdown table's column heading that names a fact of the run's environment.
+bool environment_heading(const std::string& heading) {
+    return heading.rfind("wall s", 0) == 0 || heading.find("element-cycles/s") != std::string::npos ||
+           environment_key(heading);
+}
+
+// The cells of a Markdown table row "| a | b |", trimmed.
+std::vector<std::string> cells(const std::string& row) {
+    std::vector<std::string> out;
+    std::string cell;
+    for (std::size_t i = 1; i < row.size(); ++i) {
+        if (row[i] != '|') {
+            cell += row[i];
+            continue;
+        }
+        const auto first = cell.find_first_not_of(' '), last = cell.find_last_not_of(' ');
+        out.push_back(first == std::string::npos ? "" : cell.substr(first, last - first + 1));
+        cell.clear();
+    }
+    return out;
+}
+
+// A Markdown text without the environment columns of its tables (a table's heading row is the row
+// above its |---| rule); every other line as it is.
+std::string without_environment_markdown(const std::string& text) {
+    const std::vector<std::string> lines = lines_of(text);
+    std::string out;
+    std::set<std::size_t> drop;  // the current table's environment columns
+    for (std::size_t l = 0; l < lines.size(); ++l) {
+        if (lines[l].empty() || lines[l][0] != '|') {
+            drop.clear();
+            out += lines[l] + "\n";
+            continue;
+        }
+        if (l + 1 < lines.size() && lines[l + 1].rfind("|---", 0) == 0) {  // a heading row starts a table
+            drop.clear();
+            const std::vector<std::string> headings = cells(lines[l]);
+            for (std::size_t i = 0; i < headings.size(); ++i)
+                if (environment_heading(headings[i])) drop.insert(i);
+        }
+        const std::vector<std::string> row = cells(lines[l]);
+        for (std::size_t i = 0; i < row.size(); ++i)
+            if (!drop.count(i)) out += row[i] + "|";
+        out += "\n";
+    }
+    return out;
+}
+
 std::set<std::string> skipped;  // --skip NAME
 
 void compare_file(const fs::path& a, const fs::path& b) {
@@ -113,6 +170,11 @@ void compare_file(const fs::path& a, const fs::path& b) {
     if (a.extension() == ".dat" || a.extension() == ".csv") {
         const bool csv = a.extension() == ".csv";
         if (without_environment_columns(read(a), csv) != without_environment_columns(read(b), csv))
+            differ(a.string() + " vs " + b.string() + " (apart from timing columns)");
+        return;
+    }
+    if (a.extension() == ".md") {
+        if (without_environment_markdown(read(a)) != without_environment_markdown(read(b)))
             differ(a.string() + " vs " + b.string() + " (apart from timing columns)");
         return;
     }

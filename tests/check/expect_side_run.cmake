@@ -1,0 +1,23 @@
+# A study's side run must exit 0 and write the files it names into the folder it was given, and
+# nothing else there.
+#   cmake -DCOMMAND="<program>;<mode>;<operand>;..." -DRESULTS=<folder> -DFILES="<file>;..." -P expect_side_run.cmake
+if(NOT DEFINED COMMAND OR NOT DEFINED RESULTS OR NOT DEFINED FILES)
+  message(FATAL_ERROR "expect_side_run.cmake: COMMAND, RESULTS and FILES are required")
+endif()
+file(REMOVE_RECURSE "${RESULTS}")
+execute_process(COMMAND ${COMMAND} --results "${RESULTS}" RESULT_VARIABLE status OUTPUT_VARIABLE out ERROR_VARIABLE err)
+string(REPLACE ";" " " shown "${COMMAND}")
+if(NOT status EQUAL 0)
+  message(FATAL_ERROR "'${shown}' exited with '${status}'\nstdout: ${out}\nstderr: ${err}")
+endif()
+foreach(file IN LISTS FILES)
+  if(NOT EXISTS "${RESULTS}/${file}")
+    message(FATAL_ERROR "'${shown}' did not write ${file} into ${RESULTS}\nstdout: ${out}")
+  endif()
+endforeach()
+file(GLOB written RELATIVE "${RESULTS}" "${RESULTS}/*")
+list(REMOVE_ITEM written ${FILES} manifest.txt)
+list(FILTER written EXCLUDE REGEX "^[.]")  # the run folder's lock (io/run_folder.hpp)
+if(written)
+  message(FATAL_ERROR "'${shown}' wrote files it does not name: ${written}")
+endif()
