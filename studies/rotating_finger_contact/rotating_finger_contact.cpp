@@ -32,6 +32,7 @@
 #include <fstream>
 #include <map>
 #include <numbers>
+#include <string>
 #include <vector>
 
 #include "assembly/model.hpp"
@@ -591,25 +592,35 @@ void write_outlines(const std::filesystem::path& path, const Result& r) {
     }
 }
 
+// A case's own files in `dir` (the study run's folder or a --case side run's): case-<name>.dat and,
+// for the cases with snapshots, outline-<name>.dat.
+void write_case_files(const std::filesystem::path& dir, const Case& c, const Result& r) {
+    write_series(dir / fmt::format("case-{}.dat", c.name), r);
+    if (c.snapshots) write_outlines(dir / fmt::format("outline-{}.dat", c.name), r);
+}
+
 // --- Side runs (README, "Side runs") ------------------------------------------------------------
 
-const char* const kSideRunUsage =
-    "side runs (each writes under build/results/rotating_finger_contact/<run>/, or --results DIR):\n"
-    "  --case <name> [end time]      one case of Table 3-7 alone, no checks (folder case-<name>): alpha-7.5,\n"
-    "                                alpha-1, alpha-20, alpha-50, alpha-180, alpha-600, E-finger-4.2,\n"
-    "                                E-object-6.1MPa, E-object-6.1MPa-damped; end time in s (default 3,\n"
-    "                                the run stops 50 ms after contact)\n"
-    "      --finger-h M              the finger's target element length [m] (default 6e-3)\n"
-    "      --mapped N                the finger's section as one mapped N x N block, round(L / h) layers\n"
-    "                                (the thesis's mesh: --mapped 5 --finger-h 3.984e-3)\n"
-    "      --object-h M              the aluminium object's element length [m] (default 12e-3)\n"
-    "      --perturb EPS             the drum speed x (1 + EPS) (|EPS| <= 1e-3: a robustness test)\n"
-    "      --two-way                 symmetric contact (the object's nodes on the finger's faces too)\n"
-    "  --static-convergence [k]      the static mesh convergence of the object's stress (12, 6, 3 mm) and of\n"
-    "                                the finger's root stress (O-grids 6 and 3 mm, the thesis's mapped mesh\n"
-    "                                and its halves down to h / 2^(k-1); k 1..3, default 1)\n"
-    "      --finger-only             the finger's root stress alone\n"
-    "  --quiet                       no progress lines on stderr\n";
+// The side runs' usage; the case names come from table_3_7_cases (one list).
+std::string side_run_usage() {
+    std::string names;
+    for (const Case& c : table_3_7_cases(3.0)) names += (names.empty() ? "" : ", ") + c.name;
+    return "side runs (each writes under build/results/rotating_finger_contact/<run>/, or --results DIR):\n"
+           "  --case <name> [end time]      one case of Table 3-7 alone, no checks (folder case-<name>); end time\n"
+           "                                in s (default 3, the run stops 50 ms after contact); the cases:\n"
+           "                                " + names + "\n"
+           "      --finger-h M              the finger's target element length [m] (default 6e-3)\n"
+           "      --mapped N                the finger's section as one mapped N x N block, round(L / h) layers\n"
+           "                                (the thesis's mesh: --mapped 5 --finger-h 3.984e-3)\n"
+           "      --object-h M              the aluminium object's element length [m] (default 12e-3)\n"
+           "      --perturb EPS             the drum speed x (1 + EPS) (|EPS| <= 1e-3: a robustness test)\n"
+           "      --two-way                 symmetric contact (the object's nodes on the finger's faces too)\n"
+           "  --static-convergence [k]      the static mesh convergence of the object's stress (12, 6, 3 mm) and of\n"
+           "                                the finger's root stress (O-grids 6 and 3 mm, the thesis's mapped mesh\n"
+           "                                and its halves down to h / 2^(k-1); k 1..3, default 1)\n"
+           "      --finger-only             the finger's root stress alone\n"
+           "  --quiet                       no progress lines on stderr\n";
+}
 
 /// A side run's command line (check::read_side_run) with its options read.
 struct SideRunCommand : check::SideRun {
@@ -620,7 +631,7 @@ struct SideRunCommand : check::SideRun {
 SideRunCommand parse_side_run(int argc, char** argv) {
     SideRunCommand c;
     static_cast<check::SideRun&>(c) = check::read_side_run(
-        argc, argv, "rotating_finger_contact", kSideRunUsage, {"--case", "--static-convergence"},
+        argc, argv, "rotating_finger_contact", side_run_usage(), {"--case", "--static-convergence"},
         {{"--finger-h", "--case"},
          {"--mapped", "--case"},
          {"--object-h", "--case"},
@@ -653,8 +664,7 @@ int case_side_run(const SideRunCommand& c) {
     const Case& which = *std::find_if(cases.begin(), cases.end(), [&](const Case& k) { return k.name == name; });
     io::RunFolder out(check::side_run_folder("rotating_finger_contact", "case-" + name, c.results), "rotating_finger_contact --case");
     const Result r = run_case(which, c.variant, out.staging());
-    write_series(out.staging() / fmt::format("case-{}.dat", name), r);
-    if (which.snapshots) write_outlines(out.staging() / fmt::format("outline-{}.dat", name), r);
+    write_case_files(out.staging(), which, r);
     io::write_text_file(out.staging() / "run.json", r.summary.to_json().dump(2) + "\n");
     fmt::print("{}\n", r.summary.text());
     fmt::print("{}: F max {:.3f} N (CFC 60; 2 ms-mean maximum {:.3f} N), contact force max {:.3f} N, sigma finger max {:.3f} MPa, "
@@ -700,8 +710,7 @@ void run(check::Study& study) {
         const Case& c = cases[k];
         Result& r = res[c.name] = std::move(runs[k]);
         study.record_run({c.name, r.summary.to_json()});
-        write_series(out / fmt::format("case-{}.dat", c.name), r);
-        if (c.snapshots) write_outlines(out / fmt::format("outline-{}.dat", c.name), r);
+        write_case_files(out, c, r);
         if (c.e_finger == 6.1e6 && c.e_object == 69e9)
             alphas.push_back(c.alpha), firsts.push_back(r.t_first), lasts.push_back(r.t_last);
     }
